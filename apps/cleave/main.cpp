@@ -1,0 +1,173 @@
+// cleave: the command-line program. `cleave --help` documents every sub-command and option.
+#include <omp.h>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "apps/cleave/progress.hpp"
+#include "libmpm/core/error.hpp"
+#include "libmpm/scene/scene.hpp"
+#include "libmpm/solver/run.hpp"
+
+namespace fs = std::filesystem;
+using namespace cleave;
+
+namespace {
+
+constexpr int kOk = 0, kFailure = 1, kBadInput = 2, kAborted = 3;
+
+const char* kHelp = R"(cleave - dynamic fracture with particle methods
+
+Usage:
+  cleave run SCENE [--out DIR] [--threads N] [--resume] [--quiet]
+  cleave check SCENE
+  cleave --help | --version
+
+Commands:
+  run     Simulate SCENE (a JSON scene, see docs/scenes.md). Writes into DIR:
+            particles.pvd + particles_NNNNNN.vtu   particle time series (VTK XML)
+            global.csv                             energies, external work, momentum
+            checkpoint.bin                         restart state at the last frame
+            run.json                               status: running | complete | aborted
+          Shows progress (step, simulated time, wall time, ETA) on stderr and a one-line
+          summary on stdout.
+  check   Validate SCENE without running it: every bad value is reported with its key
+          path and reason. Prints what the run would build.
+
+Options:
+  --out DIR      output directory (default: SCENE's file name without .json, + "_out")
+  --threads N    OpenMP threads (default: OMP_NUM_THREADS or all cores); results are the
+                 same for any N
+  --resume       continue a stopped run from DIR/checkpoint.bin (same scene)
+  --quiet        no progress line
+  --help         this text
+  --version      program version
+
+Exit status: 0 success; 1 I/O or internal error; 2 bad scene or command line (nothing
+is written); 3 the run stopped on a detected problem (particle left the grid, NaN,
+energy blow-up) after writing its last state; run.json says "aborted" and why.
+)";
+
+struct Args {
+  std::string command, scene, out;
+  int threads = 0;
+  bool resume = false, quiet = false;
+};
+
+int usage_error(const std::string& msg) {
+  std::fprintf(stderr, "cleave: %s\n(see cleave --help)\n", msg.c_str());
+  return kBadInput;
+}
+
+template <int Dim>
+void print_check(const Model<Dim>& m) {
+  std::printf("scene OK: %s%dD %s, %zu particles in %zu bodies, %zu materials\n",
+              m.title.empty() ? "" : (m.title + ": ").c_str(), Dim,
+              m.analysis == Analysis::PlaneStress ? "plane stress"
+              : m.analysis == Analysis::PlaneStrain ? "plane strain" : "solid",
+              m.particles.size(), m.bodies.size(), m.materials.size());
+  std::printf("grid: cell %.6g m, %zu nodes", m.grid.h, m.grid.node_count());
+  for (int d = 0; d < Dim; ++d) std::printf("%s%d", d ? " x " : " (", m.grid.nodes[d]);
+  std::printf(")\nmethod: %s, %s; dt = %.6g s (stable limit %.6g s), %ld steps to %.6g s\n",
+              m.shape_function == ShapeFunctionKind::UGimp ? "uGIMP" : "linear", scheme_name(m.scheme), m.dt,
+              m.stable_dt, static_cast<long>(std::ceil(m.end_time / m.dt - 1e-9)), m.end_time);
+  std::printf("output: every %.6g s (%zu fields), global.csv every %.6g s\n", m.output.interval,
+              m.output.fields.size(), m.output.global_interval);
+}
+
+template <int Dim>
+int run_dim(const nlohmann::json& scene, const Args& a) {
+  Model<Dim> m = build_model<Dim>(scene);
+  if (a.command == "check") {
+    print_check(m);
+    return kOk;
+  }
+  fs::path out = a.out;
+  if (out.empty()) out = fs::path(a.scene).stem().string() + "_out";
+  app::ProgressPrinter printer;
+  RunOptions opt;
+  opt.out = out;
+  opt.resume = a.resume;
+  opt.scene_hash = scene_hash(scene);
+  opt.progress_interval_s = printer.interval();
+  if (!a.quiet) opt.progress = [&](const RunProgress& p) { printer(p); };
+  try {
+    const RunSummary s = run_model<Dim>(m, opt);
+    printer.finish();
+    const double ns = 1e9 * s.wall_s / std::max(1.0, double(s.steps) * m.particles.size());
+    std::printf("done: %ld steps to t = %.6g s, %zu particles, %d frames, %s wall (%.0f ns/particle-step, %d threads); "
+                "output in %s\n",
+                s.steps, s.time, m.particles.size(), s.frames, app::format_seconds(s.wall_s).c_str(), ns,
+                omp_get_max_threads(), out.string().c_str());
+    return kOk;
+  } catch (const RunAborted& e) {
+    printer.finish();
+    std::fprintf(stderr, "cleave: run stopped: %s\nlast state written to %s; %s says \"aborted\"\n", e.what(),
+                 out.string().c_str(), (out / "run.json").string().c_str());
+    return kAborted;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> argv_s(argv + 1, argv + argc);
+  Args a;
+  for (std::size_t i = 0; i < argv_s.size(); ++i) {
+    const std::string& s = argv_s[i];
+    auto value = [&](const char* opt) -> std::string {
+      if (i + 1 >= argv_s.size()) throw std::invalid_argument(std::string(opt) + " needs a value");
+      return argv_s[++i];
+    };
+    try {
+      if (s == "--help" || s == "-h") {
+        std::fputs(kHelp, stdout);
+        return kOk;
+      } else if (s == "--version") {
+        std::puts("cleave 0.1");
+        return kOk;
+      } else if (s == "--out") {
+        a.out = value("--out");
+      } else if (s == "--threads") {
+        const std::string v = value("--threads");
+        std::size_t pos = 0;
+        a.threads = std::stoi(v, &pos);
+        if (pos != v.size() || a.threads < 1) throw std::invalid_argument("--threads needs a positive integer");
+      } else if (s == "--resume") {
+        a.resume = true;
+      } else if (s == "--quiet") {
+        a.quiet = true;
+      } else if (!s.empty() && s[0] == '-') {
+        return usage_error("unknown option '" + s + "'");
+      } else if (a.command.empty()) {
+        a.command = s;
+      } else if (a.scene.empty()) {
+        a.scene = s;
+      } else {
+        return usage_error("unexpected argument '" + s + "'");
+      }
+    } catch (const std::exception& e) {
+      return usage_error(std::string(e.what()).find("stoi") != std::string::npos ? "--threads needs a positive integer"
+                                                                                : e.what());
+    }
+  }
+  if (a.command.empty()) return usage_error("no command given");
+  if (a.command != "run" && a.command != "check") return usage_error("unknown command '" + a.command + "'");
+  if (a.scene.empty()) return usage_error(a.command + " needs a SCENE file");
+  if (a.threads > 0) omp_set_num_threads(a.threads);
+
+  try {
+    const nlohmann::json scene = load_scene_file(a.scene);
+    return scene_dimension(scene) == 3 ? run_dim<3>(scene, a) : run_dim<2>(scene, a);
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "cleave: %s: error at '%s': %s\n", a.scene.c_str(), e.key_path().c_str(), e.reason().c_str());
+    return kBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cleave: error: %s\n", e.what());
+    return kFailure;
+  }
+}

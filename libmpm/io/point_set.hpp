@@ -1,0 +1,28 @@
+// The neutral in-memory form of one output frame: points plus named per-point arrays. Solvers fill
+// it (2D data padded with z = 0) and the writers serialise it, so no writer knows about particles.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cleave::io {
+
+// One point-data array; values.size() == components * n_points, stored point-major
+// (all components of point 0, then point 1, ...), which is exactly VTK's tuple layout.
+struct PointArray {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+};
+
+struct PointSet {
+  std::vector<double> points;  // 3 per point (2D data padded with z = 0)
+  std::vector<PointArray> arrays;  // point data
+  // Optional. If empty every point becomes a VTK_VERTEX cell (type 1); otherwise the cells are
+  // VTK_POLY_LINE (type 4) with these point ids and there are no vertex cells (crack paths).
+  std::vector<std::vector<int64_t>> polylines;
+  std::size_t size() const { return points.size() / 3; }
+};
+
+}  // namespace cleave::io

@@ -1,0 +1,51 @@
+// Constitutive laws. A material is a small class registered by name (see linear_elastic.cpp);
+// the scene names it with "type". Stresses are Cauchy, strains small-strain tensor components,
+// both in the Sym<Dim> layout of core/types.hpp.
+#pragma once
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "libmpm/core/registry.hpp"
+#include "libmpm/core/types.hpp"
+#include "libmpm/scene/units.hpp"
+
+namespace cleave {
+
+template <int Dim>
+class Material {
+ public:
+  virtual ~Material() = default;
+  // Advance stress and strain by the velocity gradient L over dt (one of the paper's Subtask 3).
+  virtual void update(Sym<Dim>& stress, Sym<Dim>& strain, const Mat<Dim>& L, double dt) const = 0;
+  // Stored elastic energy per unit volume for the current state.
+  virtual double strain_energy_density(const Sym<Dim>& stress, const Sym<Dim>& strain) const = 0;
+  // Largest wave speed (for the stable time step).
+  virtual double wave_speed() const = 0;
+  double density() const { return density_; }
+  const std::string& name() const { return name_; }
+
+ protected:
+  double density_ = 0.0;
+  std::string name_;
+};
+
+// Arguments to a material factory: its JSON object, its key path for errors, units and analysis.
+struct MaterialArgs {
+  const nlohmann::json& json;
+  std::string key_path;
+  const UnitSystem& units;
+  Analysis analysis;
+};
+
+template <int Dim>
+using MaterialRegistry = Registry<Material<Dim>, const MaterialArgs&>;
+
+// Registers the built-in materials (explicit, so a static library cannot drop them).
+void register_builtin_materials();
+
+// Reads a required positive finite number `key` of j (scaled by `factor`), or throws a SceneError.
+double read_positive(const nlohmann::json& j, const std::string& key, const std::string& key_path,
+                     double factor);
+
+}  // namespace cleave

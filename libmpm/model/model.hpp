@@ -1,0 +1,60 @@
+// Everything a run needs, built from a scene and expressed in SI: grid, bodies as particles,
+// materials, loads, grid conditions and the solver settings. Only what the scene declares exists.
+#pragma once
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "libmpm/material/material.hpp"
+#include "libmpm/model/grid.hpp"
+#include "libmpm/model/loads.hpp"
+#include "libmpm/model/particles.hpp"
+#include "libmpm/shape/shape_function.hpp"
+#include "libmpm/solver/scheme.hpp"
+
+namespace cleave {
+
+struct Body {
+  std::string name;
+  int material = 0;
+  std::size_t first = 0, count = 0;  // particle range
+  double thickness = 1.0;            // 2D only
+};
+
+// Prescribed nodal velocity components, merged over every condition of the scene: one entry per node.
+template <int Dim>
+struct GridConditions {
+  std::vector<int64_t> node;
+  std::vector<uint8_t> mask;  // bit d set: velocity component d prescribed
+  std::vector<Vec<Dim>> velocity;
+};
+
+struct OutputSettings {
+  double interval = 0.0;         // particle VTU frames
+  double global_interval = 0.0;  // global.csv rows
+  std::set<std::string> fields;
+};
+
+template <int Dim>
+struct Model {
+  std::string title;
+  Analysis analysis = Dim == 3 ? Analysis::ThreeD : Analysis::PlaneStrain;
+  GridGeometry<Dim> grid;
+  ShapeFunctionKind shape_function = ShapeFunctionKind::UGimp;
+  Scheme scheme = Scheme::USAVG;
+  std::vector<std::unique_ptr<Material<Dim>>> materials;
+  std::vector<Body> bodies;
+  Particles<Dim> particles;
+  std::vector<TractionLoad<Dim>> tractions;
+  Vec<Dim> gravity = Vec<Dim>::Zero();
+  GridConditions<Dim> conditions;
+  double damping = 0.0;  // kinetic damping coefficient kappa (1/s), seed 002 eq. 28
+  double end_time = 0.0;
+  double dt = 0.0;
+  double stable_dt = 0.0;  // h / c_max at the start
+  double energy_blowup_factor = 10.0;
+  OutputSettings output;
+};
+
+}  // namespace cleave

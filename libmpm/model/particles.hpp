@@ -1,0 +1,42 @@
+// Material points stored as a structure of arrays: each field is one contiguous array, so the
+// per-particle loops stream memory and vectorise, and a 2D model holds only 2D vectors.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "libmpm/core/types.hpp"
+
+namespace cleave {
+
+template <int Dim>
+struct Particles {
+  std::vector<Vec<Dim>> x;       // position
+  std::vector<Vec<Dim>> v;       // velocity
+  std::vector<Vec<Dim>> u;       // displacement from the initial position
+  std::vector<Sym<Dim>> stress;  // Cauchy stress
+  std::vector<Sym<Dim>> strain;  // small-strain tensor
+  std::vector<double> mass;
+  std::vector<double> volume0;     // initial volume (2D: area times thickness)
+  std::vector<double> half_width;  // half the particle's domain, in cells (uGIMP)
+  std::vector<int32_t> material;   // index into Model::materials
+
+  std::size_t size() const { return x.size(); }
+  void resize(std::size_t n) {
+    x.resize(n);
+    v.resize(n);
+    u.resize(n);
+    stress.resize(n);
+    strain.resize(n);
+    mass.resize(n);
+    volume0.resize(n);
+    half_width.resize(n);
+    material.resize(n);
+  }
+  // Current volume from the normal strains, as the seed's eq. 25 (times the out-of-plane stretch).
+  double volume(std::size_t p) const {
+    const auto& e = strain[p];
+    return volume0[p] * (1.0 + e[0]) * (1.0 + e[1]) * (1.0 + e[2]);
+  }
+};
+
+}  // namespace cleave

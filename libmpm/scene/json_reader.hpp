@@ -1,0 +1,96 @@
+// Small helpers that read scene JSON with precise error messages: every failure names the key
+// path ("time.dt") and the reason, and unknown keys are rejected rather than silently ignored.
+#pragma once
+#include <cmath>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "libmpm/core/error.hpp"
+#include "libmpm/core/types.hpp"
+
+namespace cleave {
+
+class ObjectReader {
+ public:
+  ObjectReader(const nlohmann::json& j, std::string path, std::initializer_list<const char*> allowed)
+      : j_(j), path_(std::move(path)) {
+    if (!j.is_object()) throw SceneError(path_, "expected an object");
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      bool ok = false;
+      std::string valid;
+      for (const char* a : allowed) {
+        ok = ok || it.key() == a;
+        valid += (valid.empty() ? "" : ", ") + std::string(a);
+      }
+      if (!ok) throw SceneError(at(it.key()), "unknown key; valid keys: " + valid);
+    }
+  }
+  std::string at(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  const std::string& path() const { return path_; }
+  bool has(const char* key) const { return j_.contains(key) && !j_[key].is_null(); }
+  const nlohmann::json& operator[](const char* key) const { return j_[key]; }
+
+  double number(const char* key, double scale = 1.0) const {
+    if (!has(key)) throw SceneError(at(key), "missing");
+    return number_of(j_[key], at(key)) * scale;
+  }
+  double number_or(const char* key, double fallback, double scale = 1.0) const {
+    return has(key) ? number(key, scale) : fallback;
+  }
+  double positive(const char* key, double scale = 1.0) const {
+    const double v = number(key, scale);
+    if (!(v > 0.0)) throw SceneError(at(key), "must be positive (got " + j_[key].dump() + ")");
+    return v;
+  }
+  double positive_or(const char* key, double fallback, double scale = 1.0) const {
+    return has(key) ? positive(key, scale) : fallback;
+  }
+  int integer_or(const char* key, int fallback, int lo, int hi) const {
+    if (!has(key)) return fallback;
+    const auto& v = j_[key];
+    if (!v.is_number_integer()) throw SceneError(at(key), "expected an integer");
+    const long long i = v.get<long long>();
+    if (i < lo || i > hi)
+      throw SceneError(at(key), "must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
+                                    " (got " + std::to_string(i) + ")");
+    return static_cast<int>(i);
+  }
+  std::string string(const char* key) const {
+    if (!has(key)) throw SceneError(at(key), "missing");
+    if (!j_[key].is_string()) throw SceneError(at(key), "expected a string");
+    return j_[key].get<std::string>();
+  }
+  std::string string_or(const char* key, const std::string& fallback) const {
+    return has(key) ? string(key) : fallback;
+  }
+  template <int Dim>
+  Vec<Dim> vec(const char* key, double scale = 1.0) const {
+    if (!has(key)) throw SceneError(at(key), "missing");
+    return vec_of<Dim>(j_[key], at(key), scale);
+  }
+
+  static double number_of(const nlohmann::json& v, const std::string& path) {
+    if (!v.is_number()) throw SceneError(path, "expected a number (got " + v.dump() + ")");
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) throw SceneError(path, "must be finite");
+    return d;
+  }
+  template <int Dim>
+  static Vec<Dim> vec_of(const nlohmann::json& v, const std::string& path, double scale = 1.0) {
+    if (!v.is_array() || v.size() != static_cast<std::size_t>(Dim))
+      throw SceneError(path, "expected " + std::to_string(Dim) + " numbers (" +
+                                 (Dim == 2 ? "[x, y]" : "[x, y, z]") + ") for this " +
+                                 std::to_string(Dim) + "D scene");
+    Vec<Dim> r;
+    for (int d = 0; d < Dim; ++d) r[d] = number_of(v[d], path + "[" + std::to_string(d) + "]") * scale;
+    return r;
+  }
+
+ private:
+  const nlohmann::json& j_;
+  std::string path_;
+};
+
+}  // namespace cleave

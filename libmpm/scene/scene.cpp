@@ -1,0 +1,454 @@
+#include "libmpm/scene/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <unordered_set>
+
+#include "libmpm/geometry/shape.hpp"
+#include "libmpm/scene/json_reader.hpp"
+#include "libmpm/scene/units.hpp"
+
+namespace cleave {
+namespace {
+
+using nlohmann::json;
+
+const char* const kFieldNames[] = {"displacement", "velocity", "stress", "strain", "material",
+                                   "mass", "volume", "von_mises", "principal_stress_difference"};
+
+std::string index_path(const std::string& base, std::size_t i) {
+  return base + "[" + std::to_string(i) + "]";
+}
+
+const json& array_at(const json& root, const char* key, bool required) {
+  static const json empty = json::array();
+  if (!root.contains(key) || root[key].is_null()) {
+    if (required) throw SceneError(key, "missing");
+    return empty;
+  }
+  if (!root[key].is_array()) throw SceneError(key, "expected an array");
+  return root[key];
+}
+
+Analysis read_analysis(const json& scene, double length, double& thickness) {
+  if (!scene.contains("analysis")) throw SceneError("analysis", "missing (plane_strain, plane_stress or 3d)");
+  ObjectReader r(scene["analysis"], "analysis", {"type", "thickness"});
+  const std::string type = r.string("type");
+  Analysis a;
+  if (type == "plane_strain") a = Analysis::PlaneStrain;
+  else if (type == "plane_stress") a = Analysis::PlaneStress;
+  else if (type == "3d") a = Analysis::ThreeD;
+  else throw SceneError("analysis.type", "unknown analysis '" + type + "'; valid: plane_strain, plane_stress, 3d");
+  if (a == Analysis::ThreeD && r.has("thickness"))
+    throw SceneError("analysis.thickness", "a 3D analysis has no thickness");
+  if (a == Analysis::PlaneStress && !r.has("thickness"))
+    throw SceneError("analysis.thickness", "missing: a plane-stress analysis needs the specimen thickness");
+  thickness = r.positive_or("thickness", 1.0 / length, length);
+  return a;
+}
+
+// Lattice coordinates of a particle, used to find boundary faces for tractions.
+template <int Dim>
+struct LatticeKey {
+  std::array<int64_t, Dim> c;
+  int64_t hash() const {
+    int64_t k = 0;
+    for (int d = 0; d < Dim; ++d) k = k * 2000003 + c[d];
+    return k;
+  }
+};
+
+template <int Dim>
+struct BodyLattice {
+  int n = 2;                          // particles per cell per axis
+  std::unordered_set<int64_t> occupied;
+  std::vector<std::array<int64_t, Dim>> coord;  // per particle of the body
+};
+
+}  // namespace
+
+json load_scene_file(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw SceneError(file.string(), "cannot open the scene file");
+  try {
+    return json::parse(in, nullptr, true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& e) {
+    throw SceneError(file.string(), std::string("not valid JSON: ") + e.what());
+  }
+}
+
+int scene_dimension(const json& scene) {
+  if (!scene.is_object()) throw SceneError("(scene)", "the scene must be a JSON object");
+  double t = 0;
+  return dimension_of(read_analysis(scene, 1.0, t));
+}
+
+template <int Dim>
+Model<Dim> build_model(const json& scene) {
+  ObjectReader top(scene, "", {"title", "description", "units", "analysis", "grid", "mpm", "materials",
+                               "bodies", "loads", "damping", "time", "output", "checks"});
+  register_builtin_materials();
+  Model<Dim> m;
+  const UnitSystem units = UnitSystem::from_json(scene.value("units", json()), "units");
+  const double L = units.factor(Quantity::Length);
+  m.title = top.string_or("title", "");
+  double thickness = 1.0;
+  m.analysis = read_analysis(scene, L, thickness);
+  if (dimension_of(m.analysis) != Dim) throw SceneError("analysis.type", "dimension mismatch");
+
+  // --- method -------------------------------------------------------------------------------
+  if (top.has("mpm")) {
+    ObjectReader r(scene["mpm"], "mpm", {"shape_function", "stress_update"});
+    const std::string sf = r.string_or("shape_function", "ugimp");
+    if (sf == "linear") m.shape_function = ShapeFunctionKind::Linear;
+    else if (sf == "ugimp") m.shape_function = ShapeFunctionKind::UGimp;
+    else throw SceneError("mpm.shape_function", "unknown shape function '" + sf + "'; valid: linear, ugimp");
+    const std::string su = r.string_or("stress_update", "USAVG");
+    auto s = scheme_from_name(su);
+    if (!s) throw SceneError("mpm.stress_update", "unknown scheme '" + su + "'; valid: USL, MUSL, USF, USAVG");
+    m.scheme = *s;
+  }
+
+  // --- materials ------------------------------------------------------------------------------
+  std::map<std::string, int> material_index;
+  const json& mats = array_at(scene, "materials", true);
+  if (mats.empty()) throw SceneError("materials", "at least one material is needed");
+  for (std::size_t i = 0; i < mats.size(); ++i) {
+    const std::string path = index_path("materials", i);
+    if (!mats[i].is_object()) throw SceneError(path, "expected an object");
+    ObjectReader r(mats[i], path, {"name", "type", "E", "nu", "density"});
+    const std::string name = r.string("name");
+    const std::string type = r.string("type");
+    if (material_index.count(name)) throw SceneError(path + ".name", "duplicate material name '" + name + "'");
+    auto& reg = MaterialRegistry<Dim>::instance();
+    if (!reg.has(type))
+      throw SceneError(path + ".type", "unknown material type '" + type + "'; valid: " + reg.names_joined());
+    m.materials.push_back(reg.create(type, MaterialArgs{mats[i], path, units, m.analysis}));
+    material_index[name] = static_cast<int>(i);
+  }
+
+  // --- bodies (shapes first, so the grid can be derived from them) ---------------------------
+  const json& bodies = array_at(scene, "bodies", true);
+  if (bodies.empty()) throw SceneError("bodies", "at least one body is needed");
+  std::vector<std::unique_ptr<geom::Shape<Dim>>> shapes;
+  geom::Box<Dim> all;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const std::string path = index_path("bodies", i);
+    ObjectReader r(bodies[i], path, {"name", "material", "shape", "particles_per_cell", "velocity", "thickness"});
+    if (!r.has("shape")) throw SceneError(r.at("shape"), "missing");
+    shapes.push_back(geom::parse_shape<Dim>(bodies[i]["shape"], r.at("shape"), L));
+    const auto b = shapes.back()->bounds();
+    all = i == 0 ? b : all.united(b);
+  }
+
+  // --- grid -----------------------------------------------------------------------------------
+  {
+    if (!top.has("grid")) throw SceneError("grid", "missing (needs at least cell_size)");
+    ObjectReader r(scene["grid"], "grid", {"cell_size", "min", "max", "margin_cells"});
+    const double h = r.positive("cell_size", L);
+    m.grid.h = h;
+    if (r.has("min") != r.has("max"))
+      throw SceneError(r.has("min") ? "grid.max" : "grid.min", "give both grid.min and grid.max, or neither");
+    if (r.has("min")) {
+      const Vec<Dim> lo = r.vec<Dim>("min", L), hi = r.vec<Dim>("max", L);
+      for (int d = 0; d < Dim; ++d) {
+        const double cells = (hi[d] - lo[d]) / h;
+        if (!(cells >= 1.0)) throw SceneError("grid.max", "grid.max must exceed grid.min by at least one cell");
+        if (std::fabs(cells - std::round(cells)) > 1e-6)
+          throw SceneError("grid.max", "grid.max - grid.min must be a whole number of cells along axis " +
+                                           std::to_string(d) + " (got " + std::to_string(cells) + " cells)");
+        m.grid.nodes[d] = static_cast<int>(std::round(cells)) + 1;
+      }
+      m.grid.origin = lo;
+    } else {
+      // Derived: bodies' bounds plus a margin, snapped to multiples of h so that grid lines pass
+      // through the origin (symmetry planes and body edges at round coordinates lie on grid lines).
+      const int margin = r.integer_or("margin_cells", 2, 2, 1000);
+      for (int d = 0; d < Dim; ++d) {
+        const double lo = std::floor(all.lo[d] / h + 1e-9) - margin;
+        const double hi = std::ceil(all.hi[d] / h - 1e-9) + margin;
+        m.grid.origin[d] = lo * h;
+        m.grid.nodes[d] = static_cast<int>(hi - lo) + 1;
+      }
+    }
+    double nodes = 1;
+    for (int d = 0; d < Dim; ++d) nodes *= m.grid.nodes[d];
+    if (nodes > 2e9) throw SceneError("grid.cell_size", "the grid would have more than 2e9 nodes");
+  }
+
+  // --- particles --------------------------------------------------------------------------------
+  std::vector<BodyLattice<Dim>> lattices(bodies.size());
+  const int K = m.shape_function == ShapeFunctionKind::UGimp ? 3 : 2;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const std::string path = index_path("bodies", i);
+    ObjectReader r(bodies[i], path, {"name", "material", "shape", "particles_per_cell", "velocity", "thickness"});
+    Body b;
+    b.name = r.string_or("name", "body" + std::to_string(i));
+    const std::string mat = r.string("material");
+    if (!material_index.count(mat)) throw SceneError(r.at("material"), "no material named '" + mat + "'");
+    b.material = material_index[mat];
+    const int n = r.integer_or("particles_per_cell", 2, 1, 8);
+    if (Dim == 3 && r.has("thickness")) throw SceneError(r.at("thickness"), "a 3D body has no thickness");
+    b.thickness = Dim == 2 ? r.positive_or("thickness", thickness, L) : 1.0;
+    const Vec<Dim> v0 = r.has("velocity") ? r.vec<Dim>("velocity", units.factor(Quantity::Velocity))
+                                          : Vec<Dim>::Zero();
+    const auto& shape = *shapes[i];
+    const auto bb = shape.bounds();
+    const double h = m.grid.h;
+    std::array<int64_t, Dim> c0, c1;
+    for (int d = 0; d < Dim; ++d) {
+      c0[d] = static_cast<int64_t>(std::floor((bb.lo[d] - m.grid.origin[d]) / h)) - 1;
+      c1[d] = static_cast<int64_t>(std::ceil((bb.hi[d] - m.grid.origin[d]) / h)) + 1;
+    }
+    auto& P = m.particles;
+    b.first = P.size();
+    const double sub = h / n;
+    const double vol = std::pow(sub, Dim) * (Dim == 2 ? b.thickness : 1.0);
+    const double rho = m.materials[b.material]->density();
+    auto& lat = lattices[i];
+    lat.n = n;
+    // Cell columns along x outermost, so particles of one x strip are contiguous in memory.
+    std::array<int64_t, Dim> q;
+    for (q[0] = c0[0] * n; q[0] < c1[0] * n; ++q[0])
+      for (q[1] = c0[1] * n; q[1] < c1[1] * n; ++q[1])
+        for (int64_t z = (Dim == 3 ? c0[Dim - 1] * n : 0); z < (Dim == 3 ? c1[Dim - 1] * n : 1); ++z) {
+          if constexpr (Dim == 3) q[2] = z;
+          Vec<Dim> x;
+          for (int d = 0; d < Dim; ++d) x[d] = m.grid.origin[d] + sub * (q[d] + 0.5);
+          if (!shape.contains(x)) continue;
+          // Every node of the particle's stencil must exist.
+          for (int d = 0; d < Dim; ++d) {
+            const double xi = (x[d] - m.grid.origin[d]) / h;
+            const int base = K == 3 ? static_cast<int>(std::floor(xi + 0.5)) - 1 : static_cast<int>(std::floor(xi));
+            if (base < 0 || base + K - 1 > m.grid.nodes[d] - 1)
+              throw SceneError(r.at("shape"), "body '" + b.name + "' reaches outside the grid along axis " +
+                                                  std::string(1, "xyz"[d]) + " (a particle at " +
+                                                  std::to_string(x[d]) + " m needs grid nodes beyond the grid; "
+                                                  "enlarge grid.min/grid.max)");
+          }
+          const std::size_t p = P.size();
+          P.resize(p + 1);
+          P.x[p] = x;
+          P.v[p] = v0;
+          P.u[p].setZero();
+          P.stress[p].setZero();
+          P.strain[p].setZero();
+          P.volume0[p] = vol;
+          P.mass[p] = rho * vol;
+          P.half_width[p] = 0.5 / n;
+          P.material[p] = b.material;
+          LatticeKey<Dim> key{q};
+          lat.occupied.insert(key.hash());
+          lat.coord.push_back(q);
+        }
+    b.count = P.size() - b.first;
+    if (b.count == 0)
+      throw SceneError(r.at("shape"), "body '" + b.name + "' holds no particle centre at this cell size");
+    for (const auto& other : m.bodies)
+      if (other.name == b.name) throw SceneError(r.at("name"), "duplicate body name '" + b.name + "'");
+    m.bodies.push_back(b);
+  }
+
+  // --- loads ------------------------------------------------------------------------------------
+  const json& loads = array_at(scene, "loads", false);
+  std::map<int64_t, std::pair<uint8_t, Vec<Dim>>> conditions;
+  const double h = m.grid.h;
+  auto node_loop = [&](const Vec<Dim>& lo, const Vec<Dim>& hi, auto&& fn) {
+    std::array<int, Dim> a, b, ijk;
+    for (int d = 0; d < Dim; ++d) {
+      a[d] = std::max(0, static_cast<int>(std::ceil((lo[d] - m.grid.origin[d]) / h - 1e-6)));
+      b[d] = std::min(m.grid.nodes[d] - 1, static_cast<int>(std::floor((hi[d] - m.grid.origin[d]) / h + 1e-6)));
+    }
+    int count = 0;
+    for (ijk[0] = a[0]; ijk[0] <= b[0]; ++ijk[0])
+      for (ijk[1] = a[1]; ijk[1] <= b[1]; ++ijk[1])
+        for (int k = (Dim == 3 ? a[Dim - 1] : 0); k <= (Dim == 3 ? b[Dim - 1] : 0); ++k) {
+          if constexpr (Dim == 3) ijk[2] = k;
+          fn(static_cast<int64_t>(m.grid.index(ijk)));
+          ++count;
+        }
+    return count;
+  };
+  auto axis_of = [](const std::string& s, const std::string& path) {
+    if (s == "x") return 0;
+    if (s == "y") return 1;
+    if (s == "z" && Dim == 3) return 2;
+    throw SceneError(path, "unknown axis '" + s + "'; valid: " + std::string(Dim == 3 ? "x, y, z" : "x, y"));
+  };
+  auto read_region = [&](const ObjectReader& r, Vec<Dim>& lo, Vec<Dim>& hi) {
+    lo = m.grid.origin;
+    hi = m.grid.upper();
+    if (!r.has("region")) return;
+    ObjectReader rr(r["region"], r.at("region"), {"min", "max"});
+    lo = rr.vec<Dim>("min", L);
+    hi = rr.vec<Dim>("max", L);
+    for (int d = 0; d < Dim; ++d)
+      if (!(hi[d] >= lo[d])) throw SceneError(rr.at("max"), "region max is below region min");
+  };
+  for (std::size_t i = 0; i < loads.size(); ++i) {
+    const std::string path = index_path("loads", i);
+    if (!loads[i].is_object() || !loads[i].contains("type"))
+      throw SceneError(path + ".type", "missing (traction, body_force, velocity or symmetry)");
+    const std::string type = loads[i]["type"].is_string() ? loads[i]["type"].get<std::string>() : "";
+    if (type == "traction") {
+      ObjectReader r(loads[i], path, {"type", "name", "body", "region", "face", "traction", "rise_time"});
+      TractionLoad<Dim> t;
+      t.name = r.string_or("name", path);
+      t.traction = r.vec<Dim>("traction", units.factor(Quantity::Stress));
+      t.time_function.rise_time = r.has("rise_time") ? r.positive("rise_time", units.factor(Quantity::Time)) : 0.0;
+      const std::string face = r.string("face");
+      if (face.size() != 2 || (face[0] != '+' && face[0] != '-'))
+        throw SceneError(r.at("face"), "expected a face such as \"+y\" or \"-x\"");
+      t.side = face[0] == '+' ? 1 : -1;
+      t.axis = axis_of(face.substr(1), r.at("face"));
+      Vec<Dim> lo, hi;
+      read_region(r, lo, hi);
+      int body = -1;
+      if (r.has("body")) {
+        const std::string bn = r.string("body");
+        for (std::size_t k = 0; k < m.bodies.size(); ++k)
+          if (m.bodies[k].name == bn) body = static_cast<int>(k);
+        if (body < 0) throw SceneError(r.at("body"), "no body named '" + bn + "'");
+      }
+      for (std::size_t k = 0; k < m.bodies.size(); ++k) {
+        if (body >= 0 && static_cast<int>(k) != body) continue;
+        const auto& B = m.bodies[k];
+        const auto& lat = lattices[k];
+        for (std::size_t j = 0; j < B.count; ++j) {
+          const std::size_t p = B.first + j;
+          const auto& x = m.particles.x[p];
+          bool inside = true;
+          for (int d = 0; d < Dim; ++d) inside = inside && x[d] >= lo[d] - 1e-9 * h && x[d] <= hi[d] + 1e-9 * h;
+          if (!inside) continue;
+          LatticeKey<Dim> nb{lat.coord[j]};
+          nb.c[t.axis] += t.side;
+          if (lat.occupied.count(nb.hash())) continue;  // not a boundary face of the body
+          t.particles.push_back(static_cast<int32_t>(p));
+          t.face_area.push_back(m.particles.volume0[p] / (h / lat.n));
+        }
+      }
+      if (t.particles.empty())
+        throw SceneError(path, "no particle face on side " + face + " lies inside the region: nothing would be loaded");
+      m.tractions.push_back(std::move(t));
+    } else if (type == "body_force") {
+      ObjectReader r(loads[i], path, {"type", "acceleration"});
+      m.gravity += r.vec<Dim>("acceleration", units.factor(Quantity::Acceleration));
+    } else if (type == "velocity") {
+      ObjectReader r(loads[i], path, {"type", "region", "velocity"});
+      if (!r.has("region")) throw SceneError(r.at("region"), "missing: a velocity condition needs a region");
+      Vec<Dim> lo, hi;
+      read_region(r, lo, hi);
+      const json& vj = r["velocity"];
+      if (!r.has("velocity") || !vj.is_array() || vj.size() != Dim)
+        throw SceneError(r.at("velocity"), "expected " + std::to_string(Dim) +
+                                               " entries, each a number or null (free)");
+      uint8_t mask = 0;
+      Vec<Dim> v = Vec<Dim>::Zero();
+      for (int d = 0; d < Dim; ++d) {
+        if (vj[d].is_null()) continue;
+        mask |= uint8_t(1u << d);
+        v[d] = ObjectReader::number_of(vj[d], r.at("velocity") + "[" + std::to_string(d) + "]") *
+               units.factor(Quantity::Velocity);
+      }
+      if (!mask) throw SceneError(r.at("velocity"), "every component is null: the condition does nothing");
+      const int count = node_loop(lo, hi, [&](int64_t n) {
+        auto& c = conditions[n];
+        c.first |= mask;
+        for (int d = 0; d < Dim; ++d)
+          if (mask & (1u << d)) c.second[d] = v[d];
+      });
+      if (!count) throw SceneError(r.at("region"), "no grid node lies inside the region");
+    } else if (type == "symmetry") {
+      ObjectReader r(loads[i], path, {"type", "axis", "position"});
+      const int axis = axis_of(r.string("axis"), r.at("axis"));
+      const double pos = r.number("position", L);
+      const double cells = (pos - m.grid.origin[axis]) / h;
+      if (std::fabs(cells - std::round(cells)) > 1e-6 || cells < 0 || cells > m.grid.nodes[axis] - 1)
+        throw SceneError(r.at("position"), "a symmetry plane must lie on a grid line inside the grid (grid lines "
+                                           "are at origin + k * cell_size)");
+      Vec<Dim> lo = m.grid.origin, hi = m.grid.upper();
+      lo[axis] = hi[axis] = m.grid.origin[axis] + std::round(cells) * h;
+      node_loop(lo, hi, [&](int64_t n) {
+        auto& c = conditions[n];
+        c.first |= uint8_t(1u << axis);
+        c.second[axis] = 0.0;
+      });
+    } else {
+      throw SceneError(path + ".type", "unknown load type '" + type + "'; valid: traction, body_force, velocity, symmetry");
+    }
+  }
+  for (auto& [node, c] : conditions) {
+    m.conditions.node.push_back(node);
+    m.conditions.mask.push_back(c.first);
+    m.conditions.velocity.push_back(c.second);
+  }
+
+  // --- damping, time, output, checks --------------------------------------------------------------
+  if (top.has("damping")) {
+    ObjectReader r(scene["damping"], "damping", {"kinetic"});
+    m.damping = r.number_or("kinetic", 0.0, units.factor(Quantity::InverseTime));
+    if (m.damping < 0) throw SceneError("damping.kinetic", "must not be negative");
+  }
+  {
+    double cmax = 0.0, vmax = 0.0;
+    for (const auto& b : m.bodies) cmax = std::max(cmax, m.materials[b.material]->wave_speed());
+    for (const auto& v : m.particles.v) vmax = std::max(vmax, v.norm());
+    m.stable_dt = m.grid.h / (cmax + vmax);
+    if (!top.has("time")) throw SceneError("time", "missing (needs at least time.end)");
+    ObjectReader r(scene["time"], "time", {"end", "dt", "cfl"});
+    const double T = units.factor(Quantity::Time);
+    m.end_time = r.positive("end", T);
+    if (r.has("dt") && r.has("cfl")) throw SceneError("time.cfl", "give time.dt or time.cfl, not both");
+    if (r.has("dt")) {
+      m.dt = r.positive("dt", T);
+      if (m.dt > m.stable_dt)
+        throw SceneError("time.dt", "above the stable limit: dt = " + std::to_string(m.dt) +
+                                        " s > cell / (wave speed + particle speed) = " + std::to_string(m.stable_dt) +
+                                        " s; use a smaller dt or time.cfl");
+    } else {
+      const double cfl = r.positive_or("cfl", 0.5);
+      if (cfl > 1.0) throw SceneError("time.cfl", "must be at most 1 (got " + std::to_string(cfl) + ")");
+      m.dt = cfl * m.stable_dt;
+    }
+  }
+  {
+    const double T = units.factor(Quantity::Time);
+    m.output.interval = m.end_time / 100;
+    m.output.fields = {std::begin(kFieldNames), std::end(kFieldNames)};
+    if (top.has("output")) {
+      ObjectReader r(scene["output"], "output", {"interval", "global_interval", "fields"});
+      m.output.interval = r.positive_or("interval", m.end_time / 100, T);
+      if (r.has("fields")) {
+        const json& f = r["fields"];
+        if (!f.is_array()) throw SceneError("output.fields", "expected an array of field names");
+        m.output.fields.clear();
+        for (std::size_t i = 0; i < f.size(); ++i) {
+          const std::string p = index_path("output.fields", i);
+          if (!f[i].is_string()) throw SceneError(p, "expected a field name");
+          const std::string name = f[i].get<std::string>();
+          if (std::find(std::begin(kFieldNames), std::end(kFieldNames), name) == std::end(kFieldNames)) {
+            std::string valid;
+            for (const char* n : kFieldNames) valid += (valid.empty() ? "" : ", ") + std::string(n);
+            throw SceneError(p, "unknown field '" + name + "'; valid: " + valid);
+          }
+          m.output.fields.insert(name);
+        }
+      }
+      m.output.global_interval = r.positive_or("global_interval", m.output.interval / 10, T);
+    } else {
+      m.output.global_interval = m.output.interval / 10;
+    }
+  }
+  if (top.has("checks")) {
+    ObjectReader r(scene["checks"], "checks", {"energy_blowup_factor"});
+    m.energy_blowup_factor = r.positive_or("energy_blowup_factor", 10.0);
+  }
+  return m;
+}
+
+template Model<2> build_model<2>(const json&);
+template Model<3> build_model<3>(const json&);
+
+}  // namespace cleave

@@ -1,0 +1,45 @@
+// One MPM time step as the named tasks of seed 002, Appendix A (single velocity field; the crack
+// module adds fields). Templated on the dimension and the shape function: one code path for 2D/3D.
+#pragma once
+#include <memory>
+#include <string>
+
+#include "libmpm/model/model.hpp"
+
+namespace cleave {
+
+// Global quantities for global.csv and the run's sanity checks.
+template <int Dim>
+struct GlobalState {
+  double time = 0.0;
+  long step = 0;
+  double kinetic = 0.0, strain = 0.0, external_work = 0.0;
+  Vec<Dim> momentum = Vec<Dim>::Zero();
+  double total() const { return kinetic + strain; }
+};
+
+// A problem found during a step (NaN, particle outside the grid); empty when all is well.
+struct StepProblem {
+  long particle = -1;
+  std::string what;
+  explicit operator bool() const { return particle >= 0; }
+};
+
+template <int Dim>
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  // Advances the model by model.dt. Returns a problem if one was detected (state is then the
+  // state after the step, for writing).
+  virtual StepProblem step() = 0;
+  virtual GlobalState<Dim> global_state() const = 0;
+  virtual double time() const = 0;
+  virtual long step_count() const = 0;
+  // Restores counters when resuming from a checkpoint.
+  virtual void restore(double time, long step, double external_work) = 0;
+};
+
+template <int Dim>
+std::unique_ptr<Stepper<Dim>> make_stepper(Model<Dim>& model);
+
+}  // namespace cleave

@@ -1,0 +1,185 @@
+#include "libmpm/solver/run.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "libmpm/core/error.hpp"
+#include "libmpm/io/checkpoint.hpp"
+#include "libmpm/io/csv_writer.hpp"
+#include "libmpm/io/particle_fields.hpp"
+#include "libmpm/io/pvd_writer.hpp"
+#include "libmpm/io/vtu_writer.hpp"
+
+namespace cleave {
+namespace fs = std::filesystem;
+
+uint64_t scene_hash(const nlohmann::json& scene) {
+  // FNV-1a of the canonical dump: stable across runs and builds.
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : scene.dump()) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+namespace {
+
+void write_status(const fs::path& out, const std::string& status, const std::string& message, long step,
+                  double time) {
+  nlohmann::json j = {{"status", status}, {"message", message}, {"step", step}, {"time", time}};
+  const fs::path tmp = out / "run.json.tmp";
+  std::ofstream(tmp) << j.dump(2) << "\n";
+  fs::rename(tmp, out / "run.json");
+}
+
+std::string frame_name(int k) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "particles_%06d.vtu", k);
+  return buf;
+}
+
+template <int Dim>
+std::vector<std::string> global_columns() {
+  std::vector<std::string> c = {"time", "step", "kinetic_energy", "strain_energy", "external_work", "total_energy",
+                                "momentum_x", "momentum_y"};
+  if (Dim == 3) c.push_back("momentum_z");
+  return c;
+}
+
+template <int Dim>
+std::vector<double> global_row(const GlobalState<Dim>& g) {
+  std::vector<double> r = {g.time, double(g.step), g.kinetic, g.strain, g.external_work, g.total()};
+  for (int d = 0; d < Dim; ++d) r.push_back(g.momentum[d]);
+  return r;
+}
+
+}  // namespace
+
+template <int Dim>
+RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  const fs::path out = opt.out;
+  fs::create_directories(out);
+  auto stepper = make_stepper<Dim>(m);
+
+  io::CheckpointInfo ck;
+  io::PvdIndex pvd(out / "particles.pvd");
+  const fs::path csv_path = out / "global.csv";
+  const fs::path ck_path = out / "checkpoint.bin";
+  if (opt.resume) {
+    ck = io::read_checkpoint<Dim>(ck_path, m);
+    if (ck.scene_hash != opt.scene_hash)
+      throw std::runtime_error(ck_path.string() + ": written for a different scene; run without --resume");
+    stepper->restore(ck.time, ck.step, ck.external_work);
+    pvd = io::PvdIndex::load(out / "particles.pvd");
+    pvd.truncate_after(ck.time);
+    io::CsvSeries::truncate_after(csv_path, ck.time);
+  } else {
+    // A fresh run replaces the outputs of an earlier one in the same directory.
+    for (const auto& e : fs::directory_iterator(out)) {
+      const std::string n = e.path().filename().string();
+      if ((n.rfind("particles_", 0) == 0 && e.path().extension() == ".vtu") || n == "particles.pvd" ||
+          n == "global.csv" || n == "checkpoint.bin" || n == "run.json")
+        fs::remove(e.path());
+    }
+  }
+  io::CsvSeries csv(csv_path, global_columns<Dim>(), opt.resume);
+  write_status(out, "running", "", stepper->step_count(), stepper->time());
+
+  const double dt = m.dt;
+  const double eps = 1e-9 * dt;
+  RunSummary sum;
+  double e0 = -1.0, emax = 0.0;
+  auto write_frame = [&]() {
+    const std::string name = frame_name(ck.next_frame);
+    io::write_vtu(out / name, io::particle_point_set<Dim>(m, m.output.fields));
+    pvd.add(stepper->time(), name);
+    pvd.write();
+    ++ck.next_frame;
+    ++sum.frames;
+  };
+  auto checkpoint = [&]() {
+    ck.scene_hash = opt.scene_hash;
+    ck.time = stepper->time();
+    ck.step = stepper->step_count();
+    ck.external_work = stepper->global_state().external_work;
+    io::write_checkpoint<Dim>(ck_path, m, ck);
+  };
+  auto record_global = [&]() {
+    const auto g = stepper->global_state();
+    csv.row(global_row<Dim>(g));
+    if (e0 < 0) e0 = g.total();
+    emax = std::max(emax, g.total());
+    const double scale = std::max(e0, emax);
+    if (scale > 0) sum.max_energy_drift = std::max(sum.max_energy_drift, std::fabs(g.total() - e0) / scale);
+    return g;
+  };
+  auto abort_run = [&](const std::string& msg) {
+    write_frame();
+    write_status(out, "aborted", msg, stepper->step_count(), stepper->time());
+    throw RunAborted(msg);
+  };
+
+  if (!opt.resume) {
+    record_global();
+    write_frame();
+    ck.next_frame_time = m.output.interval;
+    ck.next_global_time = m.output.global_interval;
+    checkpoint();
+  }
+
+  auto last_report = clock::now();
+  while (stepper->time() < m.end_time - eps) {
+    const StepProblem problem = stepper->step();
+    const double t = stepper->time();
+    if (problem) {
+      const auto& x = m.particles.x[problem.particle];
+      std::ostringstream msg;
+      msg << "step " << stepper->step_count() << ", time " << t << " s: particle " << problem.particle << " at (";
+      for (int d = 0; d < Dim; ++d) msg << (d ? ", " : "") << x[d];
+      msg << ") m " << problem.what;
+      record_global();
+      abort_run(msg.str());
+    }
+    if (t >= ck.next_global_time - eps || t >= m.end_time - eps) {
+      const auto g = record_global();
+      ck.next_global_time += m.output.global_interval;
+      if (!std::isfinite(g.total())) abort_run("step " + std::to_string(g.step) + ", time " + std::to_string(t) +
+                                               " s: energy is not finite");
+      const double ref = std::max({e0, std::fabs(g.external_work), 1e-300});
+      if (g.total() > m.energy_blowup_factor * ref && g.total() > 1e-12) {
+        std::ostringstream msg;
+        msg << "step " << g.step << ", time " << t << " s: energy blow-up, total energy " << g.total()
+            << " J exceeds " << m.energy_blowup_factor << " x the reference " << ref << " J";
+        abort_run(msg.str());
+      }
+    }
+    if (t >= ck.next_frame_time - eps || t >= m.end_time - eps) {
+      write_frame();
+      ck.next_frame_time += m.output.interval;
+      checkpoint();
+    }
+    if (opt.progress && std::chrono::duration<double>(clock::now() - last_report).count() >= opt.progress_interval_s) {
+      last_report = clock::now();
+      RunProgress p;
+      p.step = stepper->step_count();
+      p.time = t;
+      p.end_time = m.end_time;
+      p.wall_s = std::chrono::duration<double>(last_report - t0).count();
+      const double frac = (t - ck.time) / std::max(m.end_time - ck.time, 1e-300);
+      p.eta_s = frac > 0 ? p.wall_s * (1.0 - frac) / frac : 0.0;
+      opt.progress(p);
+    }
+  }
+  sum.steps = stepper->step_count();
+  sum.time = stepper->time();
+  sum.wall_s = std::chrono::duration<double>(clock::now() - t0).count();
+  write_status(out, "complete", "", sum.steps, sum.time);
+  return sum;
+}
+
+template RunSummary run_model<2>(Model<2>&, const RunOptions&);
+template RunSummary run_model<3>(Model<3>&, const RunOptions&);
+
+}  // namespace cleave

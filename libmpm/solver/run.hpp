@@ -1,0 +1,42 @@
+// The run: steps the model to its end time, writes the particle series (particles.pvd + VTU frames),
+// global.csv, a checkpoint at every frame, and run.json whose "status" says whether the output is
+// complete, still running, or stopped by a detected problem.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "libmpm/model/model.hpp"
+#include "libmpm/solver/mpm_step.hpp"
+
+namespace cleave {
+
+struct RunProgress {
+  long step = 0;
+  double time = 0.0, end_time = 0.0, wall_s = 0.0, eta_s = 0.0;
+};
+
+struct RunOptions {
+  std::filesystem::path out;
+  bool resume = false;
+  std::function<void(const RunProgress&)> progress;  // called about every progress_interval_s
+  double progress_interval_s = 0.5;
+  uint64_t scene_hash = 0;
+};
+
+struct RunSummary {
+  long steps = 0;
+  double time = 0.0, wall_s = 0.0;
+  int frames = 0;
+  double max_energy_drift = 0.0;  // max |E - E0| / max(E0, max E) over global rows (no loads/damping)
+};
+
+// Throws RunAborted (after writing the last state) when a step detects a problem.
+template <int Dim>
+RunSummary run_model(Model<Dim>& m, const RunOptions& opt);
+
+uint64_t scene_hash(const nlohmann::json& scene);
+
+}  // namespace cleave
