@@ -2,6 +2,7 @@
 // separable on a regular grid, which is what makes them cheap). A style is a small struct with a
 // compile-time stencil width K; the solver is templated on it so the hot loops are fully unrolled.
 #pragma once
+#include <algorithm>
 #include <cmath>
 
 namespace cleave {
@@ -23,28 +24,26 @@ struct LinearShape {
 };
 
 // uGIMP (Bardenhagen & Kober): the hat function averaged over the particle's undeformed domain of
-// half-width l (l <= 1/2 cell). 3 nodes per axis; l = 0 reduces exactly to the linear hat.
+// half-width l (0 < l <= 1/2 cell). 3 nodes per axis. Written as the difference of the hat's
+// antiderivative H at d +- l, which is branch-free (min/max only): the piecewise form branches on
+// data and mispredicts in the hot loops.
 struct UGimpShape {
   static constexpr int K = 3;
   static constexpr const char* name = "ugimp";
+  // H(s) = integral of max(0, 1 - |t|) from -inf to s.
+  static inline double hat_integral(double s) {
+    const double c = std::min(1.0, std::max(-1.0, s));
+    return 0.5 + c - 0.5 * c * std::fabs(c);
+  }
+  static inline double hat(double s) { return std::max(0.0, 1.0 - std::fabs(s)); }
   static inline double weight(double d, double l, double& g) {
-    const double a = std::fabs(d);
-    const double s = d < 0 ? -1.0 : 1.0;
-    if (a < l) {
-      g = -d / l;
-      return 1.0 - (d * d + l * l) / (2.0 * l);
+    if (l <= 0.0) {  // a surface (loaded face): the plain hat, point-evaluated
+      g = std::fabs(d) < 1.0 ? (d > 0 ? -1.0 : 1.0) : 0.0;
+      return hat(d);
     }
-    if (a <= 1.0 - l) {
-      g = -s;
-      return 1.0 - a;
-    }
-    if (a < 1.0 + l) {
-      const double r = 1.0 + l - a;
-      g = -s * r / (2.0 * l);
-      return r * r / (4.0 * l);
-    }
-    g = 0.0;
-    return 0.0;
+    const double inv = 0.5 / l;
+    g = (hat(d + l) - hat(d - l)) * inv;
+    return (hat_integral(d + l) - hat_integral(d - l)) * inv;
   }
   static inline int eval(double xi, double l, double* w, double* dw) {
     const int base = static_cast<int>(std::floor(xi + 0.5)) - 1;

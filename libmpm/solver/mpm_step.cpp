@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -36,19 +37,32 @@ class MpmStepper final : public Stepper<Dim> {
     external_work_ = w;
   }
 
+  // The tasks of Appendix A, with passes over the particles fused where the data allow it: a pass
+  // that gathers from one node array may scatter into another, so the stress update of Task 2 runs
+  // with the force extrapolation of Task 3, and Task 5 with the re-extrapolation of Task 6c.
   StepProblem step() override {
     const double dt = m_.dt;
-    flush_denormals_on_all_threads();
+    if (omp_get_max_threads() != ftz_threads_) {  // new threads start with denormals on
+      flush_denormals_on_all_threads();
+      ftz_threads_ = omp_get_max_threads();
+    }
     order_.build(P_, G_, inv_h_);
     const double traction_power_before = traction_power();
+    const double dts = dt * traits_.fraction;
 
     task1_extrapolate();
-    task2_conditions_and_first_update(dt);
-    task3_forces();
+    apply_momentum_conditions();  // Task 2
+    if (traits_.update_before_forces) nodal_velocities();
+    stress_pass(traits_.update_before_forces ? dts : 0.0, /*scatter_force=*/true, /*move=*/false);  // Tasks 2-3
+    finish_forces();                                                                                // Task 3
     task4_update_momenta(dt);
-    StepProblem problem = task5_update_particles(dt);
-    task6_late_update(dt);
-    move_particles();
+    const bool late_update = traits_.update_after_move || traits_.reextrapolate;
+    StepProblem problem = task5_update_particles(dt, traits_.reextrapolate, /*move=*/!late_update);
+    if (traits_.reextrapolate) {  // Task 6c
+      apply_momentum_conditions();
+      nodal_velocities();
+    }
+    if (late_update) stress_pass(dts, /*scatter_force=*/false, /*move=*/true);  // Task 6a / 6c
 
     external_work_ += 0.5 * dt * (traction_power_before + traction_power());
     time_ += dt;
@@ -88,21 +102,39 @@ class MpmStepper final : public Stepper<Dim> {
     });
   }
 
-  // Task 2: grid velocity conditions on the momenta; USF and USAVG update stresses here.
-  void task2_conditions_and_first_update(double dt) {
-    apply_momentum_conditions();
-    if (traits_.update_before_forces) update_stresses(dt * traits_.fraction);
-  }
-
-  // Task 3: internal, external and damping forces (eq. 28); zero force on prescribed components.
-  void task3_forces() {
-    std::fill(grid_.force.begin(), grid_.force.end(), Vec<Dim>::Zero());
-    order_.scatter([&](std::size_t p) {
+  // Updating stresses and strains (Subtasks 2-3: velocity gradient eq. 36 from the nodal velocities
+  // in gvel_, then the constitutive law) when dts > 0; then, optionally, the internal force of
+  // Task 3 (eq. 28) with the updated stress, and the deferred position update.
+  void stress_pass(double dts, bool scatter_force, bool move) {
+    auto body = [&](std::size_t p) {
       St s;
       s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
-      const Sym<Dim> vs = P_.volume0[p] * P_.stress[p];
-      for (int k = 0; k < N; ++k) grid_.force[s.node[k]] -= sym_dot<Dim>(vs, s.g[k]);
-    });
+      if (dts > 0.0) {
+        Mat<Dim> L = Mat<Dim>::Zero();
+        for (int k = 0; k < N; ++k) L.noalias() += gvel_[s.node[k]] * s.g[k].transpose();
+        m_.materials[P_.material[p]]->update(P_.stress[p], P_.strain[p], L, dts);
+      }
+      if (scatter_force) {
+        const Sym<Dim> vs = P_.volume0[p] * P_.stress[p];
+        for (int k = 0; k < N; ++k) grid_.force[s.node[k]] -= sym_dot<Dim>(vs, s.g[k]);
+      }
+      if (move) {
+        P_.x[p] += dx_[p];
+        P_.u[p] += dx_[p];
+      }
+    };
+    if (scatter_force) {
+      std::fill(grid_.force.begin(), grid_.force.end(), Vec<Dim>::Zero());
+      order_.scatter(body);
+    } else {
+      const std::size_t np = P_.size();
+#pragma omp parallel for schedule(static) if (worth_parallel(np))
+      for (std::size_t p = 0; p < np; ++p) body(p);
+    }
+  }
+
+  // Task 3, grid part: tractions, body force, damping; zero force on prescribed components.
+  void finish_forces() {
     for (const auto& t : m_.tractions) {
       const Vec<Dim> tr = t.traction * t.time_function(time_);
       for (std::size_t j = 0; j < t.particles.size(); ++j) {
@@ -117,7 +149,7 @@ class MpmStepper final : public Stepper<Dim> {
     const double kappa = m_.damping;
     if (gravity || kappa > 0.0) {
       const std::size_t nn = grid_.mass.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (worth_parallel(nn))
       for (std::size_t n = 0; n < nn; ++n) {
         if (grid_.mass[n] <= 0.0) continue;
         grid_.force[n] += grid_.mass[n] * m_.gravity - kappa * grid_.momentum[n];
@@ -127,16 +159,16 @@ class MpmStepper final : public Stepper<Dim> {
     for (std::size_t c = 0; c < C.node.size(); ++c)
       for (int d = 0; d < Dim; ++d)
         if (C.mask[c] & (1u << d)) {
-          // The reaction needed to hold the prescribed velocity does work when that velocity is not zero.
+          // The reaction that holds a non-zero prescribed velocity does work.
           external_work_ -= grid_.force[C.node[c]][d] * C.velocity[c][d] * m_.dt;
           grid_.force[C.node[c]][d] = 0.0;
         }
   }
 
-  // Task 4: p' = p + dt f (eq. 29).
+  // Task 4: p' = p + dt f (eq. 29), and the nodal velocity and acceleration Task 5 gathers.
   void task4_update_momenta(double dt) {
     const std::size_t nn = grid_.mass.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (worth_parallel(nn))
     for (std::size_t n = 0; n < nn; ++n) {
       if (grid_.mass[n] <= 0.0) continue;
       grid_.momentum[n] += dt * grid_.force[n];
@@ -146,13 +178,12 @@ class MpmStepper final : public Stepper<Dim> {
     }
   }
 
-  // Task 5: particle velocity and position increments (eq. 30). Positions move after Task 6,
-  // which still needs the shape functions of the start of the step.
-  StepProblem task5_update_particles(double dt) {
-    const std::size_t np = P_.size();
-    long bad = std::numeric_limits<long>::max();
-#pragma omp parallel for schedule(static) reduction(min : bad)
-    for (std::size_t p = 0; p < np; ++p) {
+  // Task 5 (eq. 30): particle velocities, and position increments that are applied now or, when a
+  // later stress update still needs the start-of-step shape functions, after it. With
+  // reextrapolate, the new particle momenta go straight back to the grid (Task 6c, eq. 31).
+  StepProblem task5_update_particles(double dt, bool reextrapolate, bool move) {
+    std::atomic<long> bad{std::numeric_limits<long>::max()};
+    auto body = [&](std::size_t p) {
       St s;
       s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
       Vec<Dim> a = Vec<Dim>::Zero(), v = Vec<Dim>::Zero();
@@ -161,41 +192,34 @@ class MpmStepper final : public Stepper<Dim> {
         v += gvel_[s.node[k]] * s.w[k];
       }
       P_.v[p] += dt * a;
-      dx_[p] = dt * v;
-      const Vec<Dim> xn = P_.x[p] + dx_[p];
-      if (!P_.v[p].allFinite() || !stencil_inside<Dim, SF>(G_, inv_h_, xn, P_.half_width[p]))
-        bad = std::min(bad, static_cast<long>(p));
-    }
-    if (bad == std::numeric_limits<long>::max()) return {};
-    const bool finite = P_.v[bad].allFinite() && dx_[bad].allFinite();
-    return {bad, finite ? "left the grid" : "velocity or position is not finite (NaN/Inf)"};
-  }
-
-  // Task 6: USL updates with p'; MUSL/USAVG re-extrapolate the new velocities (eq. 31) with the
-  // start-of-step shape functions and update; USF has nothing left to do.
-  void task6_late_update(double dt) {
-    if (traits_.update_after_move) {
-      update_stresses_from_gvel(dt * traits_.fraction);
-    } else if (traits_.reextrapolate) {
-      std::fill(grid_.momentum.begin(), grid_.momentum.end(), Vec<Dim>::Zero());
-      order_.scatter([&](std::size_t p) {
-        St s;
-        s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
+      const Vec<Dim> dx = dt * v;
+      if (reextrapolate) {
         const Vec<Dim> mv = P_.mass[p] * P_.v[p];
         for (int k = 0; k < N; ++k) grid_.momentum[s.node[k]] += mv * s.w[k];
-      });
-      apply_momentum_conditions();
-      update_stresses(dt * traits_.fraction);
+      }
+      if (!P_.v[p].allFinite() || !stencil_inside<Dim, SF>(G_, inv_h_, P_.x[p] + dx, P_.half_width[p])) {
+        long cur = bad.load();
+        while (static_cast<long>(p) < cur && !bad.compare_exchange_weak(cur, static_cast<long>(p))) {
+        }
+      }
+      if (move) {
+        P_.x[p] += dx;
+        P_.u[p] += dx;
+      } else {
+        dx_[p] = dx;
+      }
+    };
+    if (reextrapolate) {
+      std::fill(grid_.momentum.begin(), grid_.momentum.end(), Vec<Dim>::Zero());
+      order_.scatter(body);
+    } else {
+      const std::size_t np = P_.size();
+#pragma omp parallel for schedule(static) if (worth_parallel(np))
+      for (std::size_t p = 0; p < np; ++p) body(p);
     }
-  }
-
-  void move_particles() {
-    const std::size_t np = P_.size();
-#pragma omp parallel for schedule(static)
-    for (std::size_t p = 0; p < np; ++p) {
-      P_.x[p] += dx_[p];
-      P_.u[p] += dx_[p];
-    }
+    const long b = bad.load();
+    if (b == std::numeric_limits<long>::max()) return {};
+    return {b, P_.v[b].allFinite() ? "left the grid" : "velocity is not finite (NaN/Inf)"};
   }
 
   void apply_momentum_conditions() {
@@ -205,26 +229,12 @@ class MpmStepper final : public Stepper<Dim> {
         if (C.mask[c] & (1u << d)) grid_.momentum[C.node[c]][d] = grid_.mass[C.node[c]] * C.velocity[c][d];
   }
 
-  // Updating stresses and strains, Subtasks 1-3: nodal velocities from the latest momenta, the
-  // particle velocity gradient (eq. 36) and the constitutive law.
-  void update_stresses(double dts) {
+  // Subtask 1: nodal velocities from the latest momenta (eq. 34).
+  void nodal_velocities() {
     const std::size_t nn = grid_.mass.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (worth_parallel(nn))
     for (std::size_t n = 0; n < nn; ++n)
       if (grid_.mass[n] > 0.0) gvel_[n] = grid_.momentum[n] / grid_.mass[n];
-    update_stresses_from_gvel(dts);
-  }
-
-  void update_stresses_from_gvel(double dts) {
-    const std::size_t np = P_.size();
-#pragma omp parallel for schedule(static)
-    for (std::size_t p = 0; p < np; ++p) {
-      St s;
-      s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
-      Mat<Dim> L = Mat<Dim>::Zero();
-      for (int k = 0; k < N; ++k) L.noalias() += gvel_[s.node[k]] * s.g[k].transpose();
-      m_.materials[P_.material[p]]->update(P_.stress[p], P_.strain[p], L, dts);
-    }
   }
 
   Vec<Dim> face_centre(const TractionLoad<Dim>& t, int32_t p) const {
@@ -260,6 +270,7 @@ class MpmStepper final : public Stepper<Dim> {
   SchemeTraits traits_;
   double time_ = 0.0, external_work_ = 0.0;
   long step_ = 0;
+  int ftz_threads_ = 0;
 };
 
 }  // namespace

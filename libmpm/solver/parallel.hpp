@@ -14,6 +14,10 @@
 
 namespace cleave {
 
+// Threads pay off only above a few thousand items per loop; below that the fork/join costs more
+// than the work (and, on a loaded machine, far more).
+inline bool worth_parallel(std::size_t n) { return n >= 8192 && omp_get_max_threads() > 1; }
+
 // Flush denormals to zero on every OpenMP thread. A wave front running into a body at rest leaves
 // values near 1e-310 behind it, and arithmetic on denormals is ~100x slower on x86.
 inline void flush_denormals_on_all_threads() {
@@ -33,7 +37,7 @@ double deterministic_sum(std::size_t n, F&& f) {
   constexpr std::size_t kChunk = 4096;
   const std::size_t chunks = (n + kChunk - 1) / kChunk;
   std::vector<double> partial(chunks, 0.0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (chunks > 2 && omp_get_max_threads() > 1)
   for (std::size_t c = 0; c < chunks; ++c) {
     double s = 0.0;
     const std::size_t end = std::min(n, (c + 1) * kChunk);
@@ -59,13 +63,14 @@ class StripOrder {
     const std::size_t np = P.size();
     strip_of_.resize(np);
     begin_.assign(strips + 1, 0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (worth_parallel(np))
     for (std::size_t p = 0; p < np; ++p) {
       const int cell = static_cast<int>(std::floor((P.x[p][0] - G.origin[0]) * inv_h));
       strip_of_[p] = std::clamp(cell / kWidth, 0, strips - 1);
     }
     for (std::size_t p = 0; p < np; ++p) ++begin_[strip_of_[p] + 1];
     for (int s = 0; s < strips; ++s) begin_[s + 1] += begin_[s];
+    parallel_ = worth_parallel(np);
     order_.resize(np);
     std::vector<std::size_t> fill(begin_.begin(), begin_.end() - 1);
     for (std::size_t p = 0; p < np; ++p) order_[fill[strip_of_[p]]++] = static_cast<int32_t>(p);
@@ -76,7 +81,7 @@ class StripOrder {
   void scatter(F&& body) const {
     const int strips = static_cast<int>(begin_.size()) - 1;
     for (int colour = 0; colour < 2; ++colour) {
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) if (parallel_)
       for (int s = colour; s < strips; s += 2)
         for (std::size_t k = begin_[s]; k < begin_[s + 1]; ++k) body(static_cast<std::size_t>(order_[k]));
     }
@@ -86,6 +91,7 @@ class StripOrder {
   std::vector<int> strip_of_;
   std::vector<std::size_t> begin_;
   std::vector<int32_t> order_;
+  bool parallel_ = false;
 };
 
 }  // namespace cleave
