@@ -23,8 +23,8 @@ constexpr int kOk = 0, kFailure = 1, kBadInput = 2, kAborted = 3;
 const char* kHelp = R"(cleave - dynamic fracture with particle methods
 
 Usage:
-  cleave run SCENE [--out DIR] [--threads N] [--resume] [--quiet]
-  cleave check SCENE
+  cleave run SCENE [--out DIR] [--threads N] [--resume] [--quiet] [--set KEY=VALUE ...]
+  cleave check SCENE [--set KEY=VALUE ...]
   cleave --help | --version
 
 Commands:
@@ -44,6 +44,9 @@ Options:
                  same for any N
   --resume       continue a stopped run from DIR/checkpoint.bin (same scene)
   --quiet        no progress line
+  --set K=V      override one scene value before validation; K is a key path as in error
+                 messages (mpm.stress_update, bodies[1].velocity), V is JSON or a plain string:
+                 --set mpm.stress_update=USL --set grid.cell_size=1 --set 'time.end=2.5'
   --help         this text
   --version      program version
 
@@ -56,7 +59,37 @@ struct Args {
   std::string command, scene, out;
   int threads = 0;
   bool resume = false, quiet = false;
+  std::vector<std::string> sets;
 };
+
+// Applies one --set KEY=VALUE to the scene; the key path uses '.' and [i] like error messages.
+void apply_set(nlohmann::json& scene, const std::string& kv) {
+  const auto eq = kv.find('=');
+  if (eq == std::string::npos || eq == 0) throw SceneError(kv, "--set needs KEY=VALUE");
+  const std::string key = kv.substr(0, eq), text = kv.substr(eq + 1);
+  nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
+  if (value.is_discarded()) value = text;  // a bare word such as USL
+  nlohmann::json* node = &scene;
+  std::size_t i = 0;
+  while (i < key.size()) {
+    if (key[i] == '[') {
+      const auto close = key.find(']', i);
+      if (close == std::string::npos) throw SceneError(key, "unclosed '[' in --set key");
+      const std::size_t idx = std::stoul(key.substr(i + 1, close - i - 1));
+      if (!node->is_array() || idx >= node->size()) throw SceneError(key.substr(0, close + 1), "no such array element");
+      node = &(*node)[idx];
+      i = close + 1;
+    } else {
+      if (key[i] == '.') ++i;
+      const auto end = key.find_first_of(".[", i);
+      const std::string name = key.substr(i, end == std::string::npos ? std::string::npos : end - i);
+      if (!node->is_object()) throw SceneError(key, "cannot set a key inside a non-object");
+      node = &(*node)[name];
+      i = end == std::string::npos ? key.size() : end;
+    }
+  }
+  *node = value;
+}
 
 int usage_error(const std::string& msg) {
   std::fprintf(stderr, "cleave: %s\n(see cleave --help)\n", msg.c_str());
@@ -139,6 +172,8 @@ int main(int argc, char** argv) {
         if (pos != v.size() || a.threads < 1) throw std::invalid_argument("--threads needs a positive integer");
       } else if (s == "--resume") {
         a.resume = true;
+      } else if (s == "--set") {
+        a.sets.push_back(value("--set"));
       } else if (s == "--quiet") {
         a.quiet = true;
       } else if (!s.empty() && s[0] == '-') {
@@ -161,7 +196,8 @@ int main(int argc, char** argv) {
   if (a.threads > 0) omp_set_num_threads(a.threads);
 
   try {
-    const nlohmann::json scene = load_scene_file(a.scene);
+    nlohmann::json scene = load_scene_file(a.scene);
+    for (const auto& kv : a.sets) apply_set(scene, kv);
     return scene_dimension(scene) == 3 ? run_dim<3>(scene, a) : run_dim<2>(scene, a);
   } catch (const SceneError& e) {
     std::fprintf(stderr, "cleave: %s: error at '%s': %s\n", a.scene.c_str(), e.key_path().c_str(), e.reason().c_str());

@@ -45,7 +45,7 @@ Analysis read_analysis(const json& scene, double length, double& thickness) {
     throw SceneError("analysis.thickness", "a 3D analysis has no thickness");
   if (a == Analysis::PlaneStress && !r.has("thickness"))
     throw SceneError("analysis.thickness", "missing: a plane-stress analysis needs the specimen thickness");
-  thickness = r.positive_or("thickness", 1.0 / length, length);
+  thickness = r.positive_or("thickness", 1.0, length);  // default: unit depth, 1 m
   return a;
 }
 
@@ -118,9 +118,13 @@ Model<Dim> build_model(const json& scene) {
   for (std::size_t i = 0; i < mats.size(); ++i) {
     const std::string path = index_path("materials", i);
     if (!mats[i].is_object()) throw SceneError(path, "expected an object");
-    ObjectReader r(mats[i], path, {"name", "type", "E", "nu", "density"});
-    const std::string name = r.string("name");
-    const std::string type = r.string("type");
+    if (!mats[i].contains("name")) throw SceneError(path + ".name", "missing");
+    if (!mats[i]["name"].is_string()) throw SceneError(path + ".name", "expected a string");
+    if (!mats[i].contains("type")) throw SceneError(path + ".type", "missing");
+    if (!mats[i]["type"].is_string()) throw SceneError(path + ".type", "expected a string");
+    // Each material style checks its own keys (linear_elastic.cpp).
+    const std::string name = mats[i]["name"].get<std::string>();
+    const std::string type = mats[i]["type"].get<std::string>();
     if (material_index.count(name)) throw SceneError(path + ".name", "duplicate material name '" + name + "'");
     auto& reg = MaterialRegistry<Dim>::instance();
     if (!reg.has(type))
@@ -152,9 +156,12 @@ Model<Dim> build_model(const json& scene) {
     if (r.has("min") != r.has("max"))
       throw SceneError(r.has("min") ? "grid.max" : "grid.min", "give both grid.min and grid.max, or neither");
     if (r.has("min")) {
+      if (r.has("margin_cells"))
+        throw SceneError("grid.margin_cells", "only used for a derived grid; remove it or remove grid.min/grid.max");
       const Vec<Dim> lo = r.vec<Dim>("min", L), hi = r.vec<Dim>("max", L);
       for (int d = 0; d < Dim; ++d) {
         const double cells = (hi[d] - lo[d]) / h;
+        if (cells > 1e8) throw SceneError("grid.cell_size", "the grid would have more than 1e8 cells along one axis");
         if (!(cells >= 1.0)) throw SceneError("grid.max", "grid.max must exceed grid.min by at least one cell");
         if (std::fabs(cells - std::round(cells)) > 1e-6)
           throw SceneError("grid.max", "grid.max - grid.min must be a whole number of cells along axis " +
@@ -169,6 +176,7 @@ Model<Dim> build_model(const json& scene) {
       for (int d = 0; d < Dim; ++d) {
         const double lo = std::floor(all.lo[d] / h + 1e-9) - margin;
         const double hi = std::ceil(all.hi[d] / h - 1e-9) + margin;
+        if (hi - lo > 1e8) throw SceneError("grid.cell_size", "the grid would have more than 1e8 cells along one axis");
         m.grid.origin[d] = lo * h;
         m.grid.nodes[d] = static_cast<int>(hi - lo) + 1;
       }
@@ -444,6 +452,9 @@ Model<Dim> build_model(const json& scene) {
   if (top.has("checks")) {
     ObjectReader r(scene["checks"], "checks", {"energy_blowup_factor"});
     m.energy_blowup_factor = r.positive_or("energy_blowup_factor", 10.0);
+    if (m.energy_blowup_factor <= 1.0)
+      throw SceneError("checks.energy_blowup_factor", "must be greater than 1 (a run's energy is compared with "
+                                                      "this multiple of its initial energy plus external work)");
   }
   return m;
 }

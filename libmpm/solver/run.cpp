@@ -60,6 +60,8 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   const fs::path out = opt.out;
+  if (opt.resume && !fs::exists(out / "checkpoint.bin"))
+    throw std::runtime_error((out / "checkpoint.bin").string() + ": no checkpoint to resume from");
   fs::create_directories(out);
   auto stepper = make_stepper<Dim>(m);
 
