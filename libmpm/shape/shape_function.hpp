@@ -13,7 +13,7 @@ struct LinearShape {
   static constexpr const char* name = "linear";
   // xi: particle coordinate in cells from the grid origin; l: particle half-width in cells (unused).
   static inline int eval(double xi, double /*l*/, double* w, double* dw) {
-    const double fl = std::floor(xi);
+    const double fl = static_cast<double>(static_cast<int>(xi));  // xi > 0 inside the grid
     const double f = xi - fl;
     w[0] = 1.0 - f;
     w[1] = f;
@@ -45,9 +45,25 @@ struct UGimpShape {
     g = (hat(d + l) - hat(d - l)) * inv;
     return (hat_integral(d + l) - hat_integral(d - l)) * inv;
   }
+  // The three weights of one axis. With r = xi - base in [1/2, 3/2) and l <= 1/2, node 0 only sees
+  // the right half of its hat and node 2 only the left half, where H is a single parabola; node 1
+  // follows from the partition of unity. This is ~4x fewer operations than three general weights.
   static inline int eval(double xi, double l, double* w, double* dw) {
-    const int base = static_cast<int>(std::floor(xi + 0.5)) - 1;
-    for (int a = 0; a < 3; ++a) w[a] = weight(xi - (base + a), l, dw[a]);
+    const int base = static_cast<int>(xi + 0.5) - 1;  // xi > 0 inside the grid: truncation = floor
+    if (l <= 0.0) {
+      for (int a = 0; a < 3; ++a) w[a] = weight(xi - (base + a), l, dw[a]);
+      return base;
+    }
+    const double r = xi - base;
+    const double A = std::max(0.0, 1.0 - r + l), B = std::max(0.0, 1.0 - r - l);
+    const double C = std::max(0.0, r - 1.0 + l), D = std::max(0.0, r - 1.0 - l);
+    const double q = 0.25 / l, g = 0.5 / l;
+    w[0] = (A * A - B * B) * q;
+    w[2] = (C * C - D * D) * q;
+    w[1] = 1.0 - w[0] - w[2];
+    dw[0] = (B - A) * g;
+    dw[2] = (C - D) * g;
+    dw[1] = -dw[0] - dw[2];
     return base;
   }
 };

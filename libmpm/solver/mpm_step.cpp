@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "libmpm/material/linear_elastic.hpp"
 #include "libmpm/solver/parallel.hpp"
 #include "libmpm/solver/stencil.hpp"
 
@@ -16,17 +17,18 @@ namespace {
 template <int Dim, class SF>
 class MpmStepper final : public Stepper<Dim> {
   using St = Stencil<Dim, SF>;
-  static constexpr int N = St::N;
 
  public:
   explicit MpmStepper(Model<Dim>& m) : m_(m), P_(m.particles), G_(m.grid) {
     stride_ = G_.strides();
     inv_h_ = 1.0 / G_.h;
     grid_.resize(G_.node_count());
-    gvel_.assign(G_.node_count(), Vec<Dim>::Zero());
-    gacc_.assign(G_.node_count(), Vec<Dim>::Zero());
+    kin_.assign(G_.node_count(), NodeKinematics{Vec<Dim>::Zero(), Vec<Dim>::Zero()});
     dx_.assign(P_.size(), Vec<Dim>::Zero());
     traits_ = traits(m.scheme);
+    all_linear_elastic_ = true;
+    for (const auto& mat : m.materials)
+      all_linear_elastic_ = all_linear_elastic_ && dynamic_cast<const LinearElastic<Dim>*>(mat.get()) != nullptr;
   }
 
   double time() const override { return time_; }
@@ -95,15 +97,15 @@ class MpmStepper final : public Stepper<Dim> {
       s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
       const double mp = P_.mass[p];
       const Vec<Dim> mv = mp * P_.v[p];
-      for (int k = 0; k < N; ++k) {
-        grid_.mass[s.node[k]] += mp * s.w[k];
-        grid_.momentum[s.node[k]] += mv * s.w[k];
-      }
+      s.for_each_weight([&](int64_t n, double w) {
+        grid_.mass[n] += mp * w;
+        grid_.momentum[n] += mv * w;
+      });
     });
   }
 
   // Updating stresses and strains (Subtasks 2-3: velocity gradient eq. 36 from the nodal velocities
-  // in gvel_, then the constitutive law) when dts > 0; then, optionally, the internal force of
+  // in kin_, then the constitutive law) when dts > 0; then, optionally, the internal force of
   // Task 3 (eq. 28) with the updated stress, and the deferred position update.
   void stress_pass(double dts, bool scatter_force, bool move) {
     auto body = [&](std::size_t p) {
@@ -111,12 +113,16 @@ class MpmStepper final : public Stepper<Dim> {
       s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
       if (dts > 0.0) {
         Mat<Dim> L = Mat<Dim>::Zero();
-        for (int k = 0; k < N; ++k) L.noalias() += gvel_[s.node[k]] * s.g[k].transpose();
-        m_.materials[P_.material[p]]->update(P_.stress[p], P_.strain[p], L, dts);
+        s.for_each([&](int64_t n, double, const Vec<Dim>& g) { L.noalias() += kin_[n].v * g.transpose(); });
+        const Material<Dim>* mat = m_.materials[P_.material[p]].get();
+        if (all_linear_elastic_)  // devirtualised: inlined into this loop
+          static_cast<const LinearElastic<Dim>*>(mat)->update_inline(P_.stress[p], P_.strain[p], L, dts);
+        else
+          mat->update(P_.stress[p], P_.strain[p], L, dts);
       }
       if (scatter_force) {
         const Sym<Dim> vs = P_.volume0[p] * P_.stress[p];
-        for (int k = 0; k < N; ++k) grid_.force[s.node[k]] -= sym_dot<Dim>(vs, s.g[k]);
+        s.for_each([&](int64_t n, double, const Vec<Dim>& g) { grid_.force[n] -= sym_dot<Dim>(vs, g); });
       }
       if (move) {
         P_.x[p] += dx_[p];
@@ -142,7 +148,7 @@ class MpmStepper final : public Stepper<Dim> {
         St s;
         s.eval(G_, stride_, inv_h_, face_centre(t, p), face_half_widths(t, p).data());
         const Vec<Dim> F = tr * t.face_area[j];
-        for (int k = 0; k < N; ++k) grid_.force[s.node[k]] += F * s.w[k];
+        s.for_each_weight([&](int64_t n, double w) { grid_.force[n] += F * w; });
       }
     }
     const bool gravity = m_.gravity.squaredNorm() > 0.0;
@@ -173,8 +179,8 @@ class MpmStepper final : public Stepper<Dim> {
       if (grid_.mass[n] <= 0.0) continue;
       grid_.momentum[n] += dt * grid_.force[n];
       const double inv_m = 1.0 / grid_.mass[n];
-      gvel_[n] = grid_.momentum[n] * inv_m;
-      gacc_[n] = grid_.force[n] * inv_m;
+      kin_[n].v = grid_.momentum[n] * inv_m;
+      kin_[n].a = grid_.force[n] * inv_m;
     }
   }
 
@@ -187,17 +193,17 @@ class MpmStepper final : public Stepper<Dim> {
       St s;
       s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
       Vec<Dim> a = Vec<Dim>::Zero(), v = Vec<Dim>::Zero();
-      for (int k = 0; k < N; ++k) {
-        a += gacc_[s.node[k]] * s.w[k];
-        v += gvel_[s.node[k]] * s.w[k];
-      }
+      s.for_each_weight([&](int64_t n, double w) {
+        a += kin_[n].a * w;
+        v += kin_[n].v * w;
+      });
       P_.v[p] += dt * a;
       const Vec<Dim> dx = dt * v;
       if (reextrapolate) {
         const Vec<Dim> mv = P_.mass[p] * P_.v[p];
-        for (int k = 0; k < N; ++k) grid_.momentum[s.node[k]] += mv * s.w[k];
+        s.for_each_weight([&](int64_t n, double w) { grid_.momentum[n] += mv * w; });
       }
-      if (!P_.v[p].allFinite() || !stencil_inside<Dim, SF>(G_, inv_h_, P_.x[p] + dx, P_.half_width[p])) {
+      if (!P_.v[p].allFinite() || !stencil_inside<Dim, SF>(G_, inv_h_, P_.x[p] + dx)) {
         long cur = bad.load();
         while (static_cast<long>(p) < cur && !bad.compare_exchange_weak(cur, static_cast<long>(p))) {
         }
@@ -234,7 +240,7 @@ class MpmStepper final : public Stepper<Dim> {
     const std::size_t nn = grid_.mass.size();
 #pragma omp parallel for schedule(static) if (worth_parallel(nn))
     for (std::size_t n = 0; n < nn; ++n)
-      if (grid_.mass[n] > 0.0) gvel_[n] = grid_.momentum[n] / grid_.mass[n];
+      if (grid_.mass[n] > 0.0) kin_[n].v = grid_.momentum[n] / grid_.mass[n];
   }
 
   Vec<Dim> face_centre(const TractionLoad<Dim>& t, int32_t p) const {
@@ -265,12 +271,18 @@ class MpmStepper final : public Stepper<Dim> {
   std::array<std::size_t, Dim> stride_;
   double inv_h_;
   GridFields<Dim> grid_;
-  std::vector<Vec<Dim>> gvel_, gacc_, dx_;
+  // Nodal velocity and acceleration side by side: Task 5 gathers both from one cache line.
+  struct NodeKinematics {
+    Vec<Dim> v, a;
+  };
+  std::vector<NodeKinematics> kin_;
+  std::vector<Vec<Dim>> dx_;
   StripOrder<Dim> order_;
   SchemeTraits traits_;
   double time_ = 0.0, external_work_ = 0.0;
   long step_ = 0;
   int ftz_threads_ = 0;
+  bool all_linear_elastic_ = false;
 };
 
 }  // namespace

@@ -1,0 +1,83 @@
+// Isotropic linear elasticity, small strain, integrated incrementally (hypoelastic form
+// dsigma = C : deps), so the same code serves every stress-update scheme. Declared in a header so
+// that the solver's stress pass can call it without a virtual call when every material is of this
+// kind (the common case, and the one the benchmark measures).
+#pragma once
+#include <cmath>
+#include <set>
+
+#include "libmpm/core/error.hpp"
+#include "libmpm/material/material.hpp"
+
+namespace cleave {
+
+template <int Dim>
+class LinearElastic final : public Material<Dim> {
+ public:
+  explicit LinearElastic(const MaterialArgs& a) : analysis_(a.analysis) {
+    const std::set<std::string> keys = {"name", "type", "E", "nu", "density"};
+    for (auto it = a.json.begin(); it != a.json.end(); ++it)
+      if (!keys.count(it.key()))
+        throw SceneError(a.key_path + "." + it.key(),
+                         "unknown key for a linear_elastic material; valid: name, type, E, nu, density");
+    E_ = read_positive(a.json, "E", a.key_path, a.units.factor(Quantity::Stress));
+    if (!a.json.contains("nu")) throw SceneError(a.key_path + ".nu", "missing (Poisson's ratio)");
+    if (!a.json["nu"].is_number()) throw SceneError(a.key_path + ".nu", "expected a number");
+    nu_ = a.json["nu"].get<double>();
+    if (!(nu_ > -1.0 && nu_ < 0.5))
+      throw SceneError(a.key_path + ".nu", "Poisson's ratio must satisfy -1 < nu < 0.5 (got " +
+                                               std::to_string(nu_) + ")");
+    this->density_ = read_positive(a.json, "density", a.key_path, a.units.factor(Quantity::Density));
+    this->name_ = a.json.value("name", std::string());
+    G_ = E_ / (2.0 * (1.0 + nu_));
+    lambda_ = E_ * nu_ / ((1.0 + nu_) * (1.0 - 2.0 * nu_));
+    plane_stress_ = analysis_ == Analysis::PlaneStress;
+    if (plane_stress_) lambda_ = 2.0 * G_ * lambda_ / (lambda_ + 2.0 * G_);
+  }
+
+  void update(Sym<Dim>& s, Sym<Dim>& e, const Mat<Dim>& L, double dt) const override { update_inline(s, e, L, dt); }
+
+  // The update on scalars (no temporaries in memory): called directly by the solver's stress pass.
+  inline void update_inline(Sym<Dim>& s, Sym<Dim>& e, const Mat<Dim>& L, double dt) const {
+    const double exx = L(0, 0) * dt, eyy = L(1, 1) * dt, exy = 0.5 * (L(0, 1) + L(1, 0)) * dt;
+    if constexpr (Dim == 2) {
+      const double tr = exx + eyy;
+      // Out of plane: plane strain keeps eps_zz = 0 and carries sigma_zz; plane stress the reverse.
+      if (plane_stress_) e[2] -= nu_ / (1.0 - nu_) * tr;
+      else s[2] += lambda_ * tr;
+      s[0] += lambda_ * tr + 2.0 * G_ * exx;
+      s[1] += lambda_ * tr + 2.0 * G_ * eyy;
+      s[3] += 2.0 * G_ * exy;
+      e[0] += exx;
+      e[1] += eyy;
+      e[3] += exy;
+    } else {
+      const double ezz = L(2, 2) * dt, eyz = 0.5 * (L(1, 2) + L(2, 1)) * dt, exz = 0.5 * (L(0, 2) + L(2, 0)) * dt;
+      const double tr = exx + eyy + ezz;
+      s[0] += lambda_ * tr + 2.0 * G_ * exx;
+      s[1] += lambda_ * tr + 2.0 * G_ * eyy;
+      s[2] += lambda_ * tr + 2.0 * G_ * ezz;
+      s[3] += 2.0 * G_ * exy;
+      s[4] += 2.0 * G_ * eyz;
+      s[5] += 2.0 * G_ * exz;
+      e[0] += exx, e[1] += eyy, e[2] += ezz, e[3] += exy, e[4] += eyz, e[5] += exz;
+    }
+  }
+
+  double strain_energy_density(const Sym<Dim>& s, const Sym<Dim>& e) const override {
+    return 0.5 * sym_contract<Dim>(s, e);
+  }
+
+  double wave_speed() const override {
+    // Dilatational speed; the plane-stress value is smaller, so this bound is safe for every analysis.
+    const double M = E_ * (1.0 - nu_) / ((1.0 + nu_) * (1.0 - 2.0 * nu_));
+    return std::sqrt(M / this->density_);
+  }
+
+ private:
+  Analysis analysis_;
+  bool plane_stress_ = false;
+  double E_ = 0, nu_ = 0, G_ = 0, lambda_ = 0;
+};
+
+}  // namespace cleave
