@@ -55,7 +55,8 @@ class MpmStepper final : public Stepper<Dim> {
     task1_extrapolate();
     apply_momentum_conditions();  // Task 2
     if (traits_.update_before_forces) nodal_velocities();
-    stress_pass(traits_.update_before_forces ? dts : 0.0, /*scatter_force=*/true, /*move=*/false);  // Tasks 2-3
+    if (traits_.update_before_forces) stress_pass<true, true, false>(dts);  // Tasks 2-3
+    else stress_pass<false, true, false>(0.0);                                // Task 3
     finish_forces();                                                                                // Task 3
     task4_update_momenta(dt);
     const bool late_update = traits_.update_after_move || traits_.reextrapolate;
@@ -64,7 +65,7 @@ class MpmStepper final : public Stepper<Dim> {
       apply_momentum_conditions();
       nodal_velocities();
     }
-    if (late_update) stress_pass(dts, /*scatter_force=*/false, /*move=*/true);  // Task 6a / 6c
+    if (late_update) stress_pass<true, false, true>(dts);  // Task 6a / 6c
 
     external_work_ += 0.5 * dt * (traction_power_before + traction_power());
     time_ += dt;
@@ -105,13 +106,15 @@ class MpmStepper final : public Stepper<Dim> {
   }
 
   // Updating stresses and strains (Subtasks 2-3: velocity gradient eq. 36 from the nodal velocities
-  // in kin_, then the constitutive law) when dts > 0; then, optionally, the internal force of
+  // in kin_, then the constitutive law) when `update`; then, optionally, the internal force of
   // Task 3 (eq. 28) with the updated stress, and the deferred position update.
-  void stress_pass(double dts, bool scatter_force, bool move) {
+  // (Compiled once per combination, so the hot loop carries no flag tests.)
+  template <bool update, bool scatter_force, bool move>
+  void stress_pass(double dts) {
     auto body = [&](std::size_t p) {
       St s;
       s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
-      if (dts > 0.0) {
+      if constexpr (update) {
         Mat<Dim> L = Mat<Dim>::Zero();
         s.for_each([&](int64_t n, double, const Vec<Dim>& g) { L.noalias() += kin_[n].v * g.transpose(); });
         const Material<Dim>* mat = m_.materials[P_.material[p]].get();
@@ -120,16 +123,16 @@ class MpmStepper final : public Stepper<Dim> {
         else
           mat->update(P_.stress[p], P_.strain[p], L, dts);
       }
-      if (scatter_force) {
+      if constexpr (scatter_force) {
         const Sym<Dim> vs = P_.volume0[p] * P_.stress[p];
         s.for_each([&](int64_t n, double, const Vec<Dim>& g) { grid_.force[n] -= sym_dot<Dim>(vs, g); });
       }
-      if (move) {
+      if constexpr (move) {
         P_.x[p] += dx_[p];
         P_.u[p] += dx_[p];
       }
     };
-    if (scatter_force) {
+    if constexpr (scatter_force) {
       std::fill(grid_.force.begin(), grid_.force.end(), Vec<Dim>::Zero());
       order_.scatter(body);
     } else {

@@ -61,16 +61,21 @@ class StripOrder {
   void build(const Particles<Dim>& P, const GridGeometry<Dim>& G, double inv_h) {
     const int strips = (G.nodes[0] + kWidth - 1) / kWidth;
     const std::size_t np = P.size();
+    // Particles rarely change strip from one step to the next: re-sort only when one did.
+    bool changed = strip_of_.size() != np || begin_.size() != static_cast<std::size_t>(strips + 1);
     strip_of_.resize(np);
-    begin_.assign(strips + 1, 0);
-#pragma omp parallel for schedule(static) if (worth_parallel(np))
+#pragma omp parallel for schedule(static) if (worth_parallel(np)) reduction(|| : changed)
     for (std::size_t p = 0; p < np; ++p) {
-      const int cell = static_cast<int>(std::floor((P.x[p][0] - G.origin[0]) * inv_h));
-      strip_of_[p] = std::clamp(cell / kWidth, 0, strips - 1);
+      const int cell = static_cast<int>((P.x[p][0] - G.origin[0]) * inv_h);  // x > origin: truncation = floor
+      const int strip = std::clamp(cell / kWidth, 0, strips - 1);
+      changed = changed || strip != strip_of_[p];
+      strip_of_[p] = strip;
     }
+    parallel_ = worth_parallel(np);
+    if (!changed) return;
+    begin_.assign(strips + 1, 0);
     for (std::size_t p = 0; p < np; ++p) ++begin_[strip_of_[p] + 1];
     for (int s = 0; s < strips; ++s) begin_[s + 1] += begin_[s];
-    parallel_ = worth_parallel(np);
     order_.resize(np);
     std::vector<std::size_t> fill(begin_.begin(), begin_.end() - 1);
     for (std::size_t p = 0; p < np; ++p) order_[fill[strip_of_[p]]++] = static_cast<int32_t>(p);
