@@ -152,8 +152,15 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
       const double ref = std::max({e0, std::fabs(g.external_work), 1e-300});
       if (g.total() > m.energy_blowup_factor * ref && g.total() > 1e-12) {
         std::ostringstream msg;
+        // Name the fastest particle: where the blow-up is.
+        std::size_t fast = 0;
+        for (std::size_t p = 1; p < m.particles.size(); ++p)
+          if (m.particles.v[p].squaredNorm() > m.particles.v[fast].squaredNorm()) fast = p;
         msg << "step " << g.step << ", time " << t << " s: energy blow-up, total energy " << g.total()
-            << " J exceeds " << m.energy_blowup_factor << " x the reference " << ref << " J";
+            << " J exceeds " << m.energy_blowup_factor << " x the reference " << ref << " J; fastest particle "
+            << fast << " at (";
+        for (int d = 0; d < Dim; ++d) msg << (d ? ", " : "") << m.particles.x[fast][d];
+        msg << ") m, speed " << m.particles.v[fast].norm() << " m/s";
         abort_run(msg.str());
       }
     }
