@@ -54,6 +54,8 @@ PointSet particle_point_set(const Model<Dim>& m, const std::set<std::string>& fi
   add("material", 1, [&](std::size_t p, double* o) { o[0] = P.material[p]; });
   add("mass", 1, [&](std::size_t p, double* o) { o[0] = P.mass[p]; });
   add("volume", 1, [&](std::size_t p, double* o) { o[0] = P.volume(p); });
+  // Edge of the particle's initial (undeformed) domain: the renderer draws each particle's footprint.
+  add("size", 1, [&](std::size_t p, double* o) { o[0] = 2.0 * P.half_width[p] * m.grid.h; });
   add("von_mises", 1, [&](std::size_t p, double* o) { o[0] = von_mises<Dim>(P.stress[p]); });
   add("principal_stress_difference", 1,
       [&](std::size_t p, double* o) { o[0] = principal_stress_difference<Dim>(P.stress[p]); });

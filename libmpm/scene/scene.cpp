@@ -16,7 +16,7 @@ namespace {
 using nlohmann::json;
 
 const char* const kFieldNames[] = {"displacement", "velocity", "stress", "strain", "material",
-                                   "mass", "volume", "von_mises", "principal_stress_difference"};
+                                   "mass", "volume", "size", "von_mises", "principal_stress_difference"};
 
 std::string index_path(const std::string& base, std::size_t i) {
   return base + "[" + std::to_string(i) + "]";
