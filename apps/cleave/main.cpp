@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "apps/cleave/progress.hpp"
+#include "apps/cleave/render_cli.hpp"
 #include "libmpm/core/error.hpp"
 #include "libmpm/scene/scene.hpp"
 #include "libmpm/solver/run.hpp"
@@ -25,7 +26,10 @@ const char* kHelp = R"(cleave - dynamic fracture with particle methods
 Usage:
   cleave run SCENE [--out DIR] [--threads N] [--resume] [--quiet] [--set KEY=VALUE ...]
   cleave check SCENE [--set KEY=VALUE ...]
-  cleave --help | --version
+  cleave render OUT [options]       images and movies (stress colours, photoelastic fringes)
+  cleave compare OUT --photo IMG --frame SPEC --map X0,Y0,SCALE[,ANGLE] [--points FILE]
+  cleave plot OUT                   energy and J/K plots
+  cleave --help | --version         (cleave render --help: the renderer's options)
 
 Commands:
   run     Simulate SCENE (a JSON scene, see docs/scenes.md). Writes into DIR:
@@ -149,6 +153,8 @@ int run_dim(const nlohmann::json& scene, const Args& a) {
 
 int main(int argc, char** argv) {
   std::vector<std::string> argv_s(argv + 1, argv + argc);
+  if (!argv_s.empty() && (argv_s[0] == "render" || argv_s[0] == "compare" || argv_s[0] == "plot"))
+    return app::viz_command(argv_s);
   Args a;
   for (std::size_t i = 0; i < argv_s.size(); ++i) {
     const std::string& s = argv_s[i];

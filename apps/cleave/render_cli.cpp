@@ -1,0 +1,241 @@
+// cleave render | compare | plot: the renderer's command line (viz/job/render_job.hpp does the work).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <numbers>
+#include <sstream>
+#include <unistd.h>
+#include <string>
+#include <vector>
+
+#include "apps/cleave/render_cli.hpp"
+#include "viz/job/render_job.hpp"
+
+namespace cleave::app {
+namespace {
+
+const char* kRenderHelp = R"(Usage:
+  cleave render OUT [options]      images (and a movie) of the particle series in OUT
+  cleave compare OUT --photo IMG --frame SPEC --map X0,Y0,SCALE[,ANGLE] [--points FILE] [options]
+  cleave plot OUT [--size WxH] [--images DIR]     energy (global.csv) and J/K (crack_tips.csv) plots
+
+Frames and image:
+  --frames SPEC        all (default) | every:K | time:T (nearest, seconds) | first | last | index:I
+  --frame SPEC         the same, for compare (one frame)
+  --size WxH           image size in pixels (default 1280x720)
+  --images DIR         where PNGs go (default OUT/render)
+  --length-unit U      unit of --roi, --map, --cut-plane and --points coordinates: m (default), mm, cm, um
+  --roi X0,Y0,X1,Y1    region of interest in model coordinates
+  --zoom Z             zoom about the window centre (default 1)
+  --background C       white (default) | black | gray | R,G,B (0-1)
+  --title TEXT         title above the image
+  --no-time            no time stamp       --no-colorbar   no colour bar
+Colouring (default: principal_stress_difference, viridis; signed fields get a diverging map):
+  --field NAME         sxx syy szz sxy von_mises principal_stress_difference ux uy |u| vx vy |v| damage
+                       or any point array, ARRAY:K for a component
+  --colormap NAME      viridis | cividis | coolwarm | gray
+  --range LO,HI        fixed range in display units (stresses in MPa, displacements in mm)
+  --log                logarithmic colour scale
+Photoelastic fringes (per pixel from the stress at that pixel):
+  --fringes MODE       dark | light (circular polariscope) | crossed | parallel (plane, with
+                       isoclinics) | seed002 (cos(k_f dsigma), seed 002 eq. 23)
+  --white-light        white light (CIE 1931 observer, D65): Michel-Levy colours
+  --thickness MM       specimen thickness in mm (default 1)
+  --fringe-constant F  material fringe constant f_sigma in N/mm/fringe at the wavelength
+  --stress-optic C     stress-optic coefficient in Brewster (1e-12 /Pa), instead of F
+  --wavelength NM      monochromatic wavelength in nm (default 546)
+  --polarizer DEG      plane polariscope axis from x, degrees (default 0)
+  --kf K               seed002 constant in 1/MPa (default 0.0889)
+3D series:
+  --cut-plane PX,PY,PZ,NX,NY,NZ   render the section through point P with normal N
+  --camera NAME        iso (default) | xy | xz | yz   (without a cut plane: particles as cubes)
+Movie:
+  --movie FILE         encode the frames with ffmpeg (H.264 MP4); the PNG frames are kept
+  --fps N              frame rate (default 10)
+Photo comparison (compare):
+  --photo IMG          PNG or JPEG photograph
+  --map X0,Y0,S[,A]    model position of the photo's top-left corner, model length per photo
+                       pixel, rotation of the photo's x axis in degrees
+  --points FILE        digitised points "x y N" per line: prints the RMS fringe-order difference
+  --out PREFIX         output prefix for PREFIX_side_by_side.png and PREFIX_overlay.png
+                       (default OUT/compare)
+)";
+
+std::vector<double> numbers(const std::string& opt, const std::string& s, std::size_t lo, std::size_t hi) {
+  std::vector<double> v;
+  std::stringstream ss(s);
+  for (std::string part; std::getline(ss, part, ',');) {
+    char* end = nullptr;
+    const double d = std::strtod(part.c_str(), &end);
+    if (part.empty() || *end != '\0' || !std::isfinite(d)) throw std::invalid_argument(opt + ": '" + part + "' is not a number");
+    v.push_back(d);
+  }
+  if (v.size() < lo || v.size() > hi)
+    throw std::invalid_argument(opt + " needs " + (lo == hi ? std::to_string(lo) : std::to_string(lo) + " to " + std::to_string(hi)) +
+                                " comma-separated numbers");
+  return v;
+}
+double number(const std::string& opt, const std::string& s) { return numbers(opt, s, 1, 1)[0]; }
+
+}  // namespace
+
+int viz_command(const std::vector<std::string>& args) {
+  using namespace cleave::viz;
+  if (args.size() < 2 || args[1] == "--help" || args[1] == "-h") {
+    std::fputs(kRenderHelp, args.size() < 2 ? stderr : stdout);
+    return args.size() < 2 ? 2 : 0;
+  }
+  const std::string cmd = args[0];
+  RenderOptions o;
+  o.series = args[1];
+  double L = 1.0;
+  std::vector<std::pair<std::string, std::string>> coords;  // options whose numbers use --length-unit
+  std::optional<std::string> photo, points, map;
+  std::string out_prefix;
+  double thickness_mm = 1.0, fringe_constant = 0, brewster = 0, wavelength_nm = 546, polarizer_deg = 0, kf = 0.0889;
+  try {
+    for (std::size_t i = 2; i < args.size(); ++i) {
+      const std::string& a = args[i];
+      auto value = [&]() -> std::string {
+        if (i + 1 >= args.size()) throw std::invalid_argument(a + " needs a value");
+        return args[++i];
+      };
+      if (a == "--help" || a == "-h") {
+        std::fputs(kRenderHelp, stdout);
+        return 0;
+      } else if (a == "--frames" || a == "--frame") o.frames = value();
+      else if (a == "--size") {
+        const std::string v = value();
+        const auto x = v.find('x');
+        if (x == std::string::npos) throw std::invalid_argument("--size needs WxH, e.g. 1920x1080");
+        o.width = int(number("--size", v.substr(0, x)));
+        o.height = int(number("--size", v.substr(x + 1)));
+        if (o.width < 16 || o.height < 16 || o.width > 16384 || o.height > 16384)
+          throw std::invalid_argument("--size must be between 16 and 16384 pixels each way");
+      } else if (a == "--images") o.image_dir = value();
+      else if (a == "--length-unit") {
+        const std::string u = value();
+        L = u == "m" ? 1.0 : u == "mm" ? 1e-3 : u == "cm" ? 1e-2 : u == "um" ? 1e-6 : -1.0;
+        if (L < 0) throw std::invalid_argument("--length-unit must be m, mm, cm or um");
+      } else if (a == "--roi" || a == "--cut-plane") coords.push_back({a, value()});
+      else if (a == "--zoom") {
+        o.zoom = number(a, value());
+        if (!(o.zoom > 0)) throw std::invalid_argument("--zoom must be positive");
+      } else if (a == "--background") {
+        const std::string v = value();
+        if (v == "white") o.background = {1, 1, 1};
+        else if (v == "black") o.background = {0, 0, 0};
+        else if (v == "gray" || v == "grey") o.background = {0.5, 0.5, 0.5};
+        else {
+          const auto c = numbers(a, v, 3, 3);
+          o.background = {c[0], c[1], c[2]};
+        }
+      } else if (a == "--title") o.title = value();
+      else if (a == "--no-time") o.time_stamp = false;
+      else if (a == "--no-colorbar") o.colorbar = false;
+      else if (a == "--field") o.field = value();
+      else if (a == "--colormap") o.colormap = value();
+      else if (a == "--range") {
+        const auto r = numbers(a, value(), 2, 2);
+        if (!(r[1] > r[0])) throw std::invalid_argument("--range needs LO < HI");
+        o.range = std::array<double, 2>{r[0], r[1]};
+      } else if (a == "--log") o.log_scale = true;
+      else if (a == "--fringes") {
+        const std::string m = value();
+        const auto p = polariscope_from_name(m);
+        if (!p) throw std::invalid_argument("--fringes must be dark, light, crossed, parallel or seed002");
+        o.fringes = true;
+        o.photo.mode = *p;
+      } else if (a == "--white-light") o.photo.white_light = o.fringes = true;
+      else if (a == "--thickness") thickness_mm = number(a, value());
+      else if (a == "--fringe-constant") fringe_constant = number(a, value());
+      else if (a == "--stress-optic") brewster = number(a, value());
+      else if (a == "--wavelength") wavelength_nm = number(a, value());
+      else if (a == "--polarizer") polarizer_deg = number(a, value());
+      else if (a == "--kf") kf = number(a, value());
+      else if (a == "--camera") o.camera = value();
+      else if (a == "--movie") o.movie = std::filesystem::path(value());
+      else if (a == "--fps") {
+        o.fps = int(number(a, value()));
+        if (o.fps < 1 || o.fps > 240) throw std::invalid_argument("--fps must be between 1 and 240");
+      } else if (a == "--photo") photo = value();
+      else if (a == "--points") points = value();
+      else if (a == "--map") map = value();
+      else if (a == "--out") out_prefix = value();
+      else throw std::invalid_argument("unknown option '" + a + "'");
+    }
+    for (const auto& [opt, v] : coords) {
+      if (opt == "--roi") {
+        const auto r = numbers(opt, v, 4, 4);
+        if (!(r[2] > r[0] && r[3] > r[1])) throw std::invalid_argument("--roi needs X0 < X1 and Y0 < Y1");
+        o.roi = std::array<double, 4>{r[0] * L, r[1] * L, r[2] * L, r[3] * L};
+      } else {
+        const auto c = numbers(opt, v, 6, 6);
+        o.cut_plane = std::array<double, 6>{c[0] * L, c[1] * L, c[2] * L, c[3], c[4], c[5]};
+      }
+    }
+    if (!(thickness_mm > 0)) throw std::invalid_argument("--thickness must be positive (mm)");
+    if (!(wavelength_nm > 0)) throw std::invalid_argument("--wavelength must be positive (nm)");
+    o.photo.thickness = thickness_mm * 1e-3;
+    o.photo.wavelength = wavelength_nm * 1e-9;
+    o.photo.fringe_constant = fringe_constant * 1e3;  // N/mm -> N/m (Pa m)
+    o.photo.stress_optic = brewster * 1e-12;
+    o.photo.polarizer_angle = polarizer_deg * std::numbers::pi / 180;
+    o.photo.k_f = kf * 1e-6;
+    const bool needs_constant = o.fringes && o.photo.mode != Polariscope::Seed002;
+    if (needs_constant && fringe_constant <= 0 && brewster <= 0)
+      throw std::invalid_argument("fringes need --fringe-constant (N/mm/fringe) or --stress-optic (Brewster)");
+
+    if (cmd == "plot") {
+      const auto dir = std::filesystem::is_directory(o.series) ? o.series : o.series.parent_path();
+      const auto files = render_plots(dir, o.image_dir.empty() ? dir / "render" : o.image_dir, o.width, o.height);
+      if (files.empty()) throw std::runtime_error(dir.string() + ": no global.csv or crack_tips.csv to plot");
+      for (const auto& f : files) std::printf("%s\n", f.string().c_str());
+      return 0;
+    }
+    if (cmd == "compare") {
+      if (!photo || !map) throw std::invalid_argument("compare needs --photo IMG and --map X0,Y0,SCALE[,ANGLE]");
+      if (!o.fringes) throw std::invalid_argument("compare needs --fringes MODE (and the photoelastic constants)");
+      const auto mv = numbers("--map", *map, 3, 4);
+      if (!(mv[2] > 0)) throw std::invalid_argument("--map: SCALE must be positive");
+      PhotoMap pm{mv[0] * L, mv[1] * L, mv[2] * L, mv.size() > 3 ? mv[3] * std::numbers::pi / 180 : 0.0};
+      std::optional<std::filesystem::path> pts;
+      if (points) pts = *points;
+      const auto dir = std::filesystem::is_directory(o.series) ? o.series : o.series.parent_path();
+      const std::filesystem::path prefix = out_prefix.empty() ? dir / "compare" : std::filesystem::path(out_prefix);
+      // Points are read in the length unit too.
+      std::optional<std::filesystem::path> scaled;
+      if (pts && L != 1.0) {
+        auto p = read_fringe_points(*pts);
+        scaled = prefix.string() + "_points_si.txt";
+        FILE* f = std::fopen(scaled->c_str(), "w");
+        if (!f) throw std::runtime_error("cannot write " + scaled->string());
+        for (const auto& q : p) std::fprintf(f, "%.17g %.17g %.17g\n", q[0] * L, q[1] * L, q[2]);
+        std::fclose(f);
+        pts = scaled;
+      }
+      const CompareResult r = compare_with_photo(o, *photo, pm, pts, prefix);
+      std::printf("agreement: normalised cross-correlation %.4f over %zu pixels\n", r.ncc, r.pixels);
+      if (r.fringe_rms) std::printf("fringe order: RMS difference %.4f over %zu points\n", *r.fringe_rms, r.points_used);
+      std::printf("images: %s_side_by_side.png, %s_overlay.png\n", prefix.string().c_str(), prefix.string().c_str());
+      return 0;
+    }
+    const bool tty = isatty(fileno(stderr));
+    const auto res = render_series(o, [&](std::size_t k, std::size_t n) {
+      if (tty) std::fprintf(stderr, "\r\033[Krendered %zu / %zu frames", k, n);
+    });
+    if (tty) std::fprintf(stderr, "\n");
+    std::printf("rendered %zu frame%s into %s%s%s\n", res.images.size(), res.images.size() == 1 ? "" : "s",
+                res.images.front().parent_path().string().c_str(), res.movie ? "; movie " : "",
+                res.movie ? res.movie->string().c_str() : "");
+    return 0;
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "cleave %s: %s\n(see cleave %s --help)\n", cmd.c_str(), e.what(), cmd.c_str());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cleave %s: error: %s\n", cmd.c_str(), e.what());
+    return 1;
+  }
+}
+
+}  // namespace cleave::app

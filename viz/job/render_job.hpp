@@ -1,0 +1,86 @@
+// `cleave render`: frames of a particle series → stress-coloured or photoelastic-fringe PNG images
+// (and a movie). Every pixel's colour is computed from the stress interpolated to that pixel,
+// never by interpolating colours or intensities.
+#pragma once
+#include <array>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "viz/optics/photoelastic.hpp"
+#include "viz/raster/rasterize.hpp"
+#include "viz/raster/series.hpp"
+#include "viz/render/headless.hpp"
+
+namespace cleave::viz {
+
+struct RenderOptions {
+  std::filesystem::path series;                 // OUT directory or a .pvd
+  std::filesystem::path image_dir;              // default: OUT/render
+  std::string frames = "all";                   // all | every:K | time:T | first | last | index:I
+  int width = 1280, height = 720;
+  std::optional<std::array<double, 4>> roi;     // x0, y0, x1, y1 (model units, m)
+  double zoom = 1.0;
+  std::array<double, 3> background{1, 1, 1};
+  std::string title;
+  bool time_stamp = true;
+  bool colorbar = true;
+  // Colouring by a field (when `fringes` is false).
+  std::string field = "principal_stress_difference";
+  std::string colormap;                         // empty: viridis, or coolwarm for signed fields
+  std::optional<std::array<double, 2>> range;   // fixed range; default automatic
+  bool log_scale = false;
+  // Photoelastic fringes.
+  bool fringes = false;
+  PhotoelasticSettings photo;
+  // 3D: cut plane (point, normal) renders a 2D section; otherwise particles as cubes.
+  std::optional<std::array<double, 6>> cut_plane;
+  std::string camera = "iso";
+  // Movie: encoded with ffmpeg from the PNG frames, which are kept.
+  std::optional<std::filesystem::path> movie;
+  int fps = 10;
+};
+
+struct RenderResult {
+  std::vector<std::filesystem::path> images;
+  std::optional<std::filesystem::path> movie;
+};
+
+// Renders the selected frames; progress(i, n) after each frame. Throws std::runtime_error /
+// std::invalid_argument with a clear message on bad input.
+RenderResult render_series(const RenderOptions&, const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+// The field image of one 2D frame (pixel colours over view), and its colour bar.
+Image field_image(const ParticleFrame&, const View&, const RenderOptions&, ColorBar& bar);
+
+// Per-pixel in-plane stress (sxx, syy, sxy) of a frame: Raster with k = 3.
+Raster stress_raster(const ParticleFrame&, const View&);
+
+// Photo comparison.
+struct PhotoMap {
+  double x0 = 0, y0 = 0;  // model coordinates of the photo's top-left pixel corner
+  double scale = 1e-4;    // metres per photo pixel
+  double angle = 0;       // rad, rotation of the photo's x axis from the model's x axis
+};
+struct CompareResult {
+  double ncc = 0;              // normalised cross-correlation of intensities over the mapped region
+  std::size_t pixels = 0;      // pixels compared
+  std::optional<double> fringe_rms;  // with points: RMS of (model fringe order - digitised order)
+  std::size_t points_used = 0;
+};
+CompareResult compare_with_photo(const RenderOptions&, const std::filesystem::path& photo, const PhotoMap&,
+                                 const std::optional<std::filesystem::path>& points,
+                                 const std::filesystem::path& out_prefix);
+// Points file: "x y N" per line (model units m, fringe order); '#' comments.
+std::vector<std::array<double, 3>> read_fringe_points(const std::filesystem::path&);
+// RMS of (model N at (x, y) - N) over the points that fall on the body.
+double fringe_order_rms(const ParticleFrame&, const PhotoelasticSettings&, const std::vector<std::array<double, 3>>& pts,
+                        std::size_t* used = nullptr);
+
+// Plots: energies from OUT/global.csv, and J/K from OUT/crack_tips.csv when present.
+std::vector<std::filesystem::path> render_plots(const std::filesystem::path& out_dir, const std::filesystem::path& image_dir,
+                                                int width, int height);
+
+}  // namespace cleave::viz
