@@ -599,7 +599,7 @@ TEST(SceneUnits, Defaults) {
   EXPECT_NEAR(m.dt, 0.5 * m.stable_dt, 1e-20);  // cfl 0.5
   EXPECT_DOUBLE_EQ(m.output.interval, 1e-7);    // end / 100
   EXPECT_DOUBLE_EQ(m.output.global_interval, 1e-8);
-  EXPECT_EQ(m.output.fields.size(), 10u);  // every field, "size" included
+  EXPECT_EQ(m.output.fields.size(), 11u);  // every field, "size" and "rotation" included
   EXPECT_DOUBLE_EQ(m.energy_blowup_factor, 10.0);
   EXPECT_DOUBLE_EQ(m.damping, 0.0);
   EXPECT_DOUBLE_EQ(m.bodies[0].thickness, 1.0);  // plane strain in SI: per metre of depth

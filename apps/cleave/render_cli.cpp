@@ -27,7 +27,8 @@ Frames and image:
   --length-unit U      unit of --roi, --map, --cut-plane and --points coordinates: m (default), mm, cm, um
   --roi X0,Y0,X1,Y1    region of interest in model coordinates
   --zoom Z             zoom about the window centre (default 1)
-  --background C       white (default) | black | gray | R,G,B (0-1)
+  --background C       white | black | gray | R,G,B (0-1); default white for colour maps and a
+                       blue-gray for fringes (so neither black nor white fringes merge with it)
   --title TEXT         title above the image
   --no-time            no time stamp       --no-colorbar   no colour bar
 Colouring (default: principal_stress_difference, viridis; signed fields get a diverging map):
@@ -92,6 +93,7 @@ int viz_command(const std::vector<std::string>& args) {
   std::vector<std::pair<std::string, std::string>> coords;  // options whose numbers use --length-unit
   std::optional<std::string> photo, points, map;
   std::string out_prefix;
+  bool background_set = false;
   double thickness_mm = 1.0, fringe_constant = 0, brewster = 0, wavelength_nm = 546, polarizer_deg = 0, kf = 0.0889;
   try {
     for (std::size_t i = 2; i < args.size(); ++i) {
@@ -122,6 +124,7 @@ int viz_command(const std::vector<std::string>& args) {
         o.zoom = number(a, value());
         if (!(o.zoom > 0)) throw std::invalid_argument("--zoom must be positive");
       } else if (a == "--background") {
+        background_set = true;
         const std::string v = value();
         if (v == "white") o.background = {1, 1, 1};
         else if (v == "black") o.background = {0, 0, 0};
@@ -174,6 +177,7 @@ int viz_command(const std::vector<std::string>& args) {
         o.cut_plane = std::array<double, 6>{c[0] * L, c[1] * L, c[2] * L, c[3], c[4], c[5]};
       }
     }
+    if (o.fringes && !background_set) o.background = {0.35, 0.42, 0.55};
     if (!(thickness_mm > 0)) throw std::invalid_argument("--thickness must be positive (mm)");
     if (!(wavelength_nm > 0)) throw std::invalid_argument("--wavelength must be positive (nm)");
     o.photo.thickness = thickness_mm * 1e-3;

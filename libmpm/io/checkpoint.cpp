@@ -6,7 +6,7 @@
 namespace cleave::io {
 namespace {
 
-constexpr uint64_t kMagic = 0x31504B4345564C43ull;  // "CLVECKP1"
+constexpr uint64_t kMagic = 0x32504B4345564C43ull;  // "CLVECKP2" (with rotation)
 
 template <class T>
 void put(std::ofstream& o, const std::vector<T>& v) {
@@ -30,7 +30,7 @@ void write_checkpoint(const std::filesystem::path& file, const Model<Dim>& m, co
     o.write(reinterpret_cast<const char*>(header), sizeof(header));
     o.write(reinterpret_cast<const char*>(&info), sizeof(info));
     const auto& P = m.particles;
-    put(o, P.x), put(o, P.v), put(o, P.u), put(o, P.stress), put(o, P.strain);
+    put(o, P.x), put(o, P.v), put(o, P.u), put(o, P.stress), put(o, P.strain), put(o, P.rotation);
     if (!o) throw std::runtime_error(tmp + ": error while writing checkpoint");
   }
   std::filesystem::rename(tmp, file);
@@ -51,6 +51,7 @@ CheckpointInfo read_checkpoint(const std::filesystem::path& file, Model<Dim>& m)
                              std::to_string(m.particles.size()) + " in " + std::to_string(Dim) + "D");
   auto& P = m.particles;
   get(i, P.x, file), get(i, P.v, file), get(i, P.u, file), get(i, P.stress, file), get(i, P.strain, file);
+  get(i, P.rotation, file);
   return info;
 }
 

@@ -56,6 +56,8 @@ PointSet particle_point_set(const Model<Dim>& m, const std::set<std::string>& fi
   add("volume", 1, [&](std::size_t p, double* o) { o[0] = P.volume(p); });
   // Edge of the particle's initial (undeformed) domain: the renderer draws each particle's footprint.
   add("size", 1, [&](std::size_t p, double* o) { o[0] = 2.0 * P.half_width[p] * m.grid.h; });
+  if constexpr (Dim == 2)  // in-plane rotation, rad (the renderer turns footprints with it)
+    add("rotation", 1, [&](std::size_t p, double* o) { o[0] = P.rotation[p]; });
   add("von_mises", 1, [&](std::size_t p, double* o) { o[0] = von_mises<Dim>(P.stress[p]); });
   add("principal_stress_difference", 1,
       [&](std::size_t p, double* o) { o[0] = principal_stress_difference<Dim>(P.stress[p]); });

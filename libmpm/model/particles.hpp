@@ -19,6 +19,7 @@ struct Particles {
   std::vector<double> volume0;     // initial volume (2D: area times thickness)
   std::vector<double> half_width;  // half the particle's domain, in cells (uGIMP)
   std::vector<int32_t> material;   // index into Model::materials
+  std::vector<double> rotation;    // 2D only: in-plane rotation (rad) integrated from the spin
 
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n) {
@@ -31,6 +32,7 @@ struct Particles {
     volume0.resize(n);
     half_width.resize(n);
     material.resize(n);
+    if constexpr (Dim == 2) rotation.resize(n);
   }
   // Current volume from the normal strains, as the seed's eq. 25 (times the out-of-plane stretch).
   double volume(std::size_t p) const {

@@ -16,7 +16,7 @@ namespace {
 using nlohmann::json;
 
 const char* const kFieldNames[] = {"displacement", "velocity", "stress", "strain", "material",
-                                   "mass", "volume", "size", "von_mises", "principal_stress_difference"};
+                                   "mass", "volume", "size", "rotation", "von_mises", "principal_stress_difference"};
 
 std::string index_path(const std::string& base, std::size_t i) {
   return base + "[" + std::to_string(i) + "]";
@@ -247,6 +247,7 @@ Model<Dim> build_model(const json& scene) {
           P.mass[p] = rho * vol;
           P.half_width[p] = 0.5 / n;
           P.material[p] = b.material;
+          if constexpr (Dim == 2) P.rotation[p] = 0.0;
           LatticeKey<Dim> key{q};
           lat.occupied.insert(key.hash());
           lat.coord.push_back(q);

@@ -117,6 +117,7 @@ class MpmStepper final : public Stepper<Dim> {
       if constexpr (update) {
         Mat<Dim> L = Mat<Dim>::Zero();
         s.for_each([&](int64_t n, double, const Vec<Dim>& g) { L.noalias() += kin_[n].v * g.transpose(); });
+        if constexpr (Dim == 2) P_.rotation[p] += 0.5 * (L(1, 0) - L(0, 1)) * dts;  // spin, for the renderer
         const Material<Dim>* mat = m_.materials[P_.material[p]].get();
         if (all_linear_elastic_)  // devirtualised: inlined into this loop
           static_cast<const LinearElastic<Dim>*>(mat)->update_inline(P_.stress[p], P_.strain[p], L, dts);

@@ -251,6 +251,9 @@ Raster rasterize_2d(const ParticleFrame& f, const View& v, const std::vector<dou
     const std::vector<double> s = particle_sizes(f);
     const PointArray* suv = array_with(f, "strain_uv", 3);
     const PointArray* s6 = suv ? nullptr : array_with(f, "strain", 6);
+    // In-plane rotation (2D series): footprints turn with the material, so a bent or spinning body
+    // leaves no slivers between its particles.
+    const PointArray* rot = suv ? nullptr : array_with(f, "rotation", 1);
     CLEAVE_OMP("omp parallel for schedule(static)")
     for (std::ptrdiff_t ip = 0; ip < static_cast<std::ptrdiff_t>(n); ++ip) {
       const std::size_t p = static_cast<std::size_t>(ip);
@@ -267,6 +270,12 @@ Raster rasterize_2d(const ParticleFrame& f, const View& v, const std::vector<dou
       double f00 = 1 + clampe(exx), f11 = 1 + clampe(eyy), f01 = clampe(exy), f10 = f01;
       double det = f00 * f11 - f01 * f10;
       if (!(det >= kMinDet)) { f00 = f11 = 1; f01 = f10 = 0; det = 1; }
+      if (rot && std::isfinite(rot->values[p])) {
+        const double cw = std::cos(rot->values[p]), sw = std::sin(rot->values[p]);
+        const double g00 = cw * f00 - sw * f10, g01 = cw * f01 - sw * f11;
+        const double g10 = sw * f00 + cw * f10, g11 = sw * f01 + cw * f11;
+        f00 = g00, f01 = g01, f10 = g10, f11 = g11;  // det unchanged by a rotation
+      }
       Foot& F = foot[p];
       F.x = f.x[p][0];
       F.y = f.x[p][1];
