@@ -1,0 +1,168 @@
+// The renderer's command line: cleave render / compare / plot on a small run, with DISPLAY unset.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "viz/job/render_job.hpp"
+
+namespace cleave::viz {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kCleave = CLEAVE_BINARY_DIR "/bin/cleave";
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+Result run(const std::string& args, const fs::path& dir) {
+  const fs::path o = dir / "stdout.txt", e = dir / "stderr.txt";
+  const std::string cmd = "env -u DISPLAY " + kCleave + " " + args + " >" + o.string() + " 2>" + e.string();
+  const int st = std::system(cmd.c_str());
+  auto slurp = [](const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  return {WEXITSTATUS(st), slurp(o), slurp(e)};
+}
+
+class RenderCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = fs::path(CLEAVE_BINARY_DIR) / "test_viz_cli";
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    // The Brazilian disk at 1 mm cells, a short damped run: ~1 300 particles, 7 frames.
+    const auto r = run(std::string("run ") + CLEAVE_SOURCE_DIR "/data/scenes/brazilian_disk.json --quiet --threads 1 " +
+                           "--set grid.cell_size=1 --set time.end=0.3 --out " + (dir_ / "disk").string(),
+                       dir_);
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  static fs::path dir_;
+};
+fs::path RenderCli::dir_;
+
+TEST_F(RenderCli, FringeFramesAndMovie) {
+  const fs::path images = dir_ / "fringes";
+  const auto r = run("render " + (dir_ / "disk").string() + " --fringes dark --fringe-constant 7 --thickness 5 --size 320x240 " +
+                         "--images " + images.string() + " --movie movie.mp4 --fps 5 --title Disk",
+                     dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  int pngs = 0;
+  for (const auto& e : fs::directory_iterator(images)) pngs += e.path().extension() == ".png";
+  EXPECT_EQ(pngs, 7);
+  ASSERT_TRUE(fs::exists(images / "movie.mp4")) << "ffmpeg (Debian package) must be installed";
+  EXPECT_GT(fs::file_size(images / "movie.mp4"), 1000u);
+  const Image img = read_image(images / "fringes_000006.png");
+  EXPECT_EQ(img.width, 320);
+  EXPECT_EQ(img.height, 240);
+}
+
+TEST_F(RenderCli, FieldWhiteLightAndPlots) {
+  const fs::path d = dir_ / "disk";
+  auto r = run("render " + d.string() + " --frames last --field syy --colormap cividis --range -20,5 --size 300x300", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(d / "render" / "syy_000000.png"));
+  r = run("render " + d.string() + " --frames last --white-light --fringes dark --fringe-constant 7 --thickness 5 --size 300x300", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(d / "render" / "fringes_white_000000.png"));
+  r = run("plot " + d.string() + " --size 400x300", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(d / "render" / "energy.png"));
+}
+
+TEST_F(RenderCli, BadOptionsExit2WithAReason) {
+  const fs::path d = dir_ / "disk";
+  for (const std::string a : {"--fringes sideways", "--fringes dark", "--size 10", "--frames every:0",
+                               "--range 5,1", "--colormap rainbow --frames last", "--bogus"}) {
+    const auto r = run("render " + d.string() + " " + a, dir_);
+    EXPECT_EQ(r.code, 2) << a << ": " << r.err;
+    EXPECT_FALSE(r.err.empty()) << a;
+  }
+  const auto r = run("render " + (dir_ / "nothing_here").string(), dir_);
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("nothing_here"), std::string::npos) << r.err;
+}
+
+// compare: a "photo" made from the model itself through the same map agrees (NCC ~ 1); the same
+// photo mapped 3 mm off does not.
+TEST_F(RenderCli, ComparePhotoAndPoints) {
+  const fs::path d = dir_ / "disk";
+  const auto entries = read_series(d);
+  const ParticleFrame f = read_particle_frame(entries.back().file, entries.back().time);
+  RenderOptions o;
+  o.fringes = true;
+  o.photo.thickness = 0.005;
+  o.photo.fringe_constant = 7000;
+  o.background = {0, 0, 0};
+  // Photo: 200 x 200 pixels of 0.2 mm, top-left corner at (-20, 20) mm.
+  const View v{-0.02, -0.02, 0.02, 0.02, 200, 200};
+  ColorBar bar;
+  write_png(dir_ / "photo.png", field_image(f, v, o, bar));
+  // Digitised points: the model's own fringe order at a few points.
+  std::ofstream pts(dir_ / "points.txt");
+  pts << "# x y N (mm)\n";
+  const Raster r = stress_raster(f, v);
+  for (int k = 0; k < 12; ++k) {
+    const int i = 60 + 7 * k, j = 100;
+    const std::size_t q = std::size_t(j) * v.width + i;
+    pts << v.pixel_x(i) * 1e3 << " " << v.pixel_y(j) * 1e3 << " "
+        << fringe_order(r.values[3 * q], r.values[3 * q + 1], r.values[3 * q + 2], o.photo) << "\n";
+  }
+  pts.close();
+  const std::string common = "compare " + d.string() + " --photo " + (dir_ / "photo.png").string() +
+                             " --frame last --fringes dark --fringe-constant 7 --thickness 5 --length-unit mm " +
+                             "--points " + (dir_ / "points.txt").string() + " --out " + (dir_ / "cmp").string();
+  auto good = run(common + " --map -20,20,0.2", dir_);
+  ASSERT_EQ(good.code, 0) << good.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(good.out, m, std::regex("cross-correlation ([0-9.\\-]+)"))) << good.out;
+  const double ncc = std::stod(m[1]);
+  ASSERT_TRUE(std::regex_search(good.out, m, std::regex("RMS difference ([0-9.e\\-]+)"))) << good.out;
+  const double rms = std::stod(m[1]);
+  auto off = run(common + " --map -17,20,0.2", dir_);
+  ASSERT_EQ(off.code, 0) << off.err;
+  ASSERT_TRUE(std::regex_search(off.out, m, std::regex("cross-correlation ([0-9.\\-]+)")));
+  const double ncc_off = std::stod(m[1]);
+  std::printf("NCC aligned %.4f, 3 mm off %.4f; points RMS %.4f\n", ncc, ncc_off, rms);
+  EXPECT_GT(ncc, 0.95);
+  EXPECT_LT(ncc_off, ncc - 0.2);
+  EXPECT_LT(rms, 0.05);
+  EXPECT_TRUE(fs::exists(dir_ / "cmp_side_by_side.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "cmp_overlay.png"));
+}
+
+TEST(RenderCli3D, CubesAndCutPlane) {
+  const fs::path dir = fs::path(CLEAVE_BINARY_DIR) / "test_viz_cli_3d";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "cube.json") << R"({"analysis": {"type": "3d"}, "grid": {"cell_size": 0.005},
+    "materials": [{"name": "m", "type": "linear_elastic", "E": 1e9, "nu": 0.3, "density": 1000}],
+    "bodies": [{"name": "b", "material": "m", "velocity": [0, -5, 0],
+                "shape": {"type": "box", "min": [0, 0, 0], "max": [0.04, 0.02, 0.02]}}],
+    "loads": [{"type": "velocity", "region": {"min": [0, -1, -1], "max": [0, 1, 1]}, "velocity": [0, 0, 0]}],
+    "time": {"end": 2e-5}, "output": {"interval": 1e-5}})";
+  auto r = run("run " + (dir / "cube.json").string() + " --quiet --threads 1 --out " + (dir / "out").string(), dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("render " + (dir / "out").string() + " --frames last --field von_mises --size 320x240", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "out" / "render" / "von_mises_000000.png"));
+  r = run("render " + (dir / "out").string() + " --frames last --field sxx --cut-plane 20,10,10,0,0,1 --length-unit mm " +
+              "--images " + (dir / "cut").string() + " --size 320x240",
+          dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "cut" / "sxx_000000.png"));
+  r = run("render " + (dir / "out").string() + " --frames last --fringes dark --fringe-constant 7", dir);
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("cut plane"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace cleave::viz
