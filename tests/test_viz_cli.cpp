@@ -8,6 +8,8 @@
 #include <regex>
 #include <sstream>
 
+#include "libmpm/io/pvd_writer.hpp"
+#include "libmpm/io/vtu_writer.hpp"
 #include "viz/job/render_job.hpp"
 
 namespace cleave::viz {
@@ -139,6 +141,40 @@ TEST_F(RenderCli, ComparePhotoAndPoints) {
   EXPECT_TRUE(fs::exists(dir_ / "cmp_overlay.png"));
 }
 
+// Crack series as the crack module writes them: J/K plots, the opening profile, and crack
+// polylines drawn over frames.
+TEST_F(RenderCli, CrackPlotsAndOverlay) {
+  const fs::path d = dir_ / "disk_cracked";
+  fs::remove_all(d);
+  fs::copy(dir_ / "disk", d, fs::copy_options::recursive);
+  std::ofstream tips(d / "crack_tips.csv");
+  tips << "time,crack,tip,x,y,J1,J2,KI,KII\n";
+  for (int k = 0; k <= 10; ++k) tips << k * 3e-5 << ",0,0,0.005,0," << 10 * k << ",0," << 1e5 * k << "," << 2e4 * k << "\n";
+  tips.close();
+  io::PointSet crack;
+  crack.points = {-0.01, 0.0, 0, 0.0, 0.0, 0, 0.01, 0.0, 0};
+  crack.arrays = {{"cod_normal", 1, {0.0, 2e-5, 0.0}}, {"cod_tangential", 1, {0.0, 1e-6, 0.0}}, {"crack", 1, {0, 0, 0}}};
+  crack.polylines = {{0, 1, 2}};
+  io::write_vtu(d / "cracks_000000.vtu", crack);
+  io::PvdIndex pvd(d / "cracks.pvd");
+  pvd.add(0.0, "cracks_000000.vtu");
+  pvd.write();
+  auto r = run("plot " + d.string() + " --size 400x300", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(d / "render" / "J.png"));
+  EXPECT_TRUE(fs::exists(d / "render" / "K.png"));
+  r = run("plot " + d.string() + " --cod 0 --size 400x300", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(d / "render" / "cod_profile.png"));
+  r = run("render " + d.string() + " --frames first --field syy --colormap gray --size 400x400", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Image img = read_image(d / "render" / "syy_000000.png");
+  std::size_t red = 0;
+  for (std::size_t i = 0; i < img.rgb.size(); i += 3)
+    red += img.rgb[i] > 180 && img.rgb[i + 1] < 80 && img.rgb[i + 2] < 80;
+  EXPECT_GT(red, 50u) << "the crack polyline is drawn over the gray field";
+}
+
 TEST(RenderCli3D, CubesAndCutPlane) {
   const fs::path dir = fs::path(CLEAVE_BINARY_DIR) / "test_viz_cli_3d";
   fs::remove_all(dir);
@@ -154,6 +190,11 @@ TEST(RenderCli3D, CubesAndCutPlane) {
   r = run("render " + (dir / "out").string() + " --frames last --field von_mises --size 320x240", dir);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir / "out" / "render" / "von_mises_000000.png"));
+  r = run("render " + (dir / "out").string() + " --frames last --field '|v|' --view 100,80,120,20,10,10,0,1,0 --length-unit mm " +
+              "--images " + (dir / "view").string() + " --size 320x240",
+          dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "view" / "_v__000000.png"));
   r = run("render " + (dir / "out").string() + " --frames last --field sxx --cut-plane 20,10,10,0,0,1 --length-unit mm " +
               "--images " + (dir / "cut").string() + " --size 320x240",
           dir);

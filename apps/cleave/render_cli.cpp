@@ -17,7 +17,9 @@ namespace {
 const char* kRenderHelp = R"(Usage:
   cleave render OUT [options]      images (and a movie) of the particle series in OUT
   cleave compare OUT --photo IMG --frame SPEC --map X0,Y0,SCALE[,ANGLE] [--points FILE] [options]
-  cleave plot OUT [--size WxH] [--images DIR]     energy (global.csv) and J/K (crack_tips.csv) plots
+  cleave plot OUT [--size WxH] [--images DIR] [--cod TIME]
+                                   energy (global.csv) and J/K (crack_tips.csv) plots; --cod: the
+                                   crack-opening profile of the crack frame nearest TIME (s)
 
 Frames and image:
   --frames SPEC        all (default) | every:K | time:T (nearest, seconds) | first | last | index:I
@@ -50,6 +52,8 @@ Photoelastic fringes (per pixel from the stress at that pixel):
 3D series:
   --cut-plane PX,PY,PZ,NX,NY,NZ   render the section through point P with normal N
   --camera NAME        iso (default) | xy | xz | yz   (without a cut plane: particles as cubes)
+  --view PX,PY,PZ,FX,FY,FZ,UX,UY,UZ   explicit camera: position, focal point, view-up
+                       (in --length-unit), perspective
 Movie:
   --movie FILE         encode the frames with ffmpeg (H.264 MP4); the PNG frames are kept
   --fps N              frame rate (default 10)
@@ -94,6 +98,7 @@ int viz_command(const std::vector<std::string>& args) {
   std::optional<std::string> photo, points, map;
   std::string out_prefix;
   bool background_set = false;
+  std::optional<double> cod_time;
   double thickness_mm = 1.0, fringe_constant = 0, brewster = 0, wavelength_nm = 546, polarizer_deg = 0, kf = 0.0889;
   try {
     for (std::size_t i = 2; i < args.size(); ++i) {
@@ -157,6 +162,8 @@ int viz_command(const std::vector<std::string>& args) {
       else if (a == "--polarizer") polarizer_deg = number(a, value());
       else if (a == "--kf") kf = number(a, value());
       else if (a == "--camera") o.camera = value();
+      else if (a == "--view") coords.push_back({a, value()});
+      else if (a == "--cod") cod_time = number(a, value());
       else if (a == "--movie") o.movie = std::filesystem::path(value());
       else if (a == "--fps") {
         o.fps = int(number(a, value()));
@@ -172,6 +179,9 @@ int viz_command(const std::vector<std::string>& args) {
         const auto r = numbers(opt, v, 4, 4);
         if (!(r[2] > r[0] && r[3] > r[1])) throw std::invalid_argument("--roi needs X0 < X1 and Y0 < Y1");
         o.roi = std::array<double, 4>{r[0] * L, r[1] * L, r[2] * L, r[3] * L};
+      } else if (opt == "--view") {
+        const auto c = numbers(opt, v, 9, 9);
+        o.view = std::array<double, 9>{c[0] * L, c[1] * L, c[2] * L, c[3] * L, c[4] * L, c[5] * L, c[6], c[7], c[8]};
       } else {
         const auto c = numbers(opt, v, 6, 6);
         o.cut_plane = std::array<double, 6>{c[0] * L, c[1] * L, c[2] * L, c[3], c[4], c[5]};
@@ -192,7 +202,12 @@ int viz_command(const std::vector<std::string>& args) {
 
     if (cmd == "plot") {
       const auto dir = std::filesystem::is_directory(o.series) ? o.series : o.series.parent_path();
-      const auto files = render_plots(dir, o.image_dir.empty() ? dir / "render" : o.image_dir, o.width, o.height);
+      const auto images = o.image_dir.empty() ? dir / "render" : o.image_dir;
+      if (cod_time) {
+        std::printf("%s\n", render_cod_profile(dir, images, *cod_time, o.width, o.height).string().c_str());
+        return 0;
+      }
+      const auto files = render_plots(dir, images, o.width, o.height);
       if (files.empty()) throw std::runtime_error(dir.string() + ": no global.csv or crack_tips.csv to plot");
       for (const auto& f : files) std::printf("%s\n", f.string().c_str());
       return 0;

@@ -1,11 +1,14 @@
 #include "viz/job/render_job.hpp"
 
 #include <vtkCellArray.h>
+#include <vtkDataArray.h>
+#include <vtkPointData.h>
 #include <vtkNew.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -169,7 +172,9 @@ RenderResult render_series(const RenderOptions& o, const std::function<void(std:
   fs::create_directories(images);
   HeadlessContext ctx(o.width, o.height);
   RenderResult res;
-  const std::string prefix = o.fringes ? (o.photo.white_light ? "fringes_white" : "fringes") : o.field;
+  std::string prefix = o.fringes ? (o.photo.white_light ? "fringes_white" : "fringes") : o.field;
+  for (char& c : prefix)  // a file name: "|v|" -> "_v_", "stress:1" -> "stress_1"
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') c = '_';
   for (std::size_t k = 0; k < sel.size(); ++k) {
     const auto& e = entries[sel[k]];
     ParticleFrame f = read_particle_frame(e.file, e.time);
@@ -205,6 +210,7 @@ RenderResult render_series(const RenderOptions& o, const std::function<void(std:
       bar.table = colormap_table(*cm, 256);
       Camera3D cam;
       cam.preset = o.camera;
+      cam.explicit_view = o.view;
       out = render_particles_3d(ctx, centres, edge, colours, cam, o.title, stamp, bar, o.background);
     } else {
       Frame2D fr;
@@ -434,6 +440,48 @@ std::vector<fs::path> render_plots(const fs::path& dir, const fs::path& images, 
       out.push_back(f);
     }
   }
+  return out;
+}
+
+fs::path render_cod_profile(const fs::path& dir, const fs::path& images, double time, int width, int height) {
+  const fs::path pvd = dir / "cracks.pvd";
+  if (!fs::exists(pvd)) throw std::runtime_error(pvd.string() + ": no crack series (the scene declares no crack)");
+  const auto idx = io::PvdIndex::load(pvd);
+  if (idx.entries().empty()) throw std::runtime_error(pvd.string() + ": lists no frame");
+  auto best = idx.entries().front();
+  for (const auto& e : idx.entries())
+    if (std::fabs(e.first - time) < std::fabs(best.first - time)) best = e;
+  vtkNew<vtkXMLUnstructuredGridReader> r;
+  const fs::path file = dir / best.second;
+  r->SetFileName(file.c_str());
+  r->Update();
+  vtkUnstructuredGrid* g = r->GetOutput();
+  vtkDataArray* cn = g->GetPointData()->GetArray("cod_normal");
+  vtkDataArray* ct = g->GetPointData()->GetArray("cod_tangential");
+  if (!cn || !ct) throw std::runtime_error(file.string() + ": no cod_normal / cod_tangential point data");
+  std::vector<PlotSeries> series;
+  for (vtkIdType c = 0; c < g->GetNumberOfCells(); ++c) {
+    vtkCell* cell = g->GetCell(c);
+    PlotSeries n{"normal COD, crack " + std::to_string(c), {}, {}}, t{"tangential COD, crack " + std::to_string(c), {}, {}};
+    double along = 0, prev[3] = {0, 0, 0};
+    for (vtkIdType k = 0; k < cell->GetNumberOfPoints(); ++k) {
+      const vtkIdType id = cell->GetPointId(k);
+      double x[3];
+      g->GetPoint(id, x);
+      if (k) along += std::sqrt((x[0] - prev[0]) * (x[0] - prev[0]) + (x[1] - prev[1]) * (x[1] - prev[1]) +
+                                (x[2] - prev[2]) * (x[2] - prev[2]));
+      std::copy(x, x + 3, prev);
+      n.x.push_back(along * 1e3), n.y.push_back(cn->GetComponent(id, 0) * 1e3);
+      t.x.push_back(along * 1e3), t.y.push_back(ct->GetComponent(id, 0) * 1e3);
+    }
+    series.push_back(std::move(n));
+    series.push_back(std::move(t));
+  }
+  fs::create_directories(images);
+  HeadlessContext ctx(width, height);
+  const fs::path out = images / "cod_profile.png";
+  write_png(out, render_plot(ctx, series, "Crack opening, " + format_time(best.first), "distance along the crack (mm)",
+                             "opening (mm)"));
   return out;
 }
 

@@ -38,6 +38,7 @@ struct RenderOptions {
   // 3D: cut plane (point, normal) renders a 2D section; otherwise particles as cubes.
   std::optional<std::array<double, 6>> cut_plane;
   std::string camera = "iso";
+  std::optional<std::array<double, 9>> view;   // explicit camera: position, focal point, view-up
   // Movie: encoded with ffmpeg from the PNG frames, which are kept.
   std::optional<std::filesystem::path> movie;
   int fps = 10;
@@ -82,5 +83,11 @@ double fringe_order_rms(const ParticleFrame&, const PhotoelasticSettings&, const
 // Plots: energies from OUT/global.csv, and J/K from OUT/crack_tips.csv when present.
 std::vector<std::filesystem::path> render_plots(const std::filesystem::path& out_dir, const std::filesystem::path& image_dir,
                                                 int width, int height);
+
+// Crack-opening profile of the crack frame nearest to `time`: normal and tangential crack opening
+// displacement against the distance along each crack, from OUT/cracks.pvd. Crack VTU files hold
+// polyline cells with point data "cod_normal" and "cod_tangential" (m) and "crack" (id).
+std::filesystem::path render_cod_profile(const std::filesystem::path& out_dir, const std::filesystem::path& image_dir,
+                                         double time, int width, int height);
 
 }  // namespace cleave::viz
