@@ -7,6 +7,7 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <unistd.h>
 
 #include "libmpm/io/pvd_writer.hpp"
 #include "libmpm/io/vtu_writer.hpp"
@@ -38,7 +39,8 @@ Result run(const std::string& args, const fs::path& dir) {
 class RenderCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::path(CLEAVE_BINARY_DIR) / "test_viz_cli";
+    // CTest runs each test of this suite in its own process, concurrently: one directory per process.
+    dir_ = fs::path(CLEAVE_BINARY_DIR) / ("test_viz_cli_" + std::to_string(getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     // The Brazilian disk at 1 mm cells, a short damped run: ~1 300 particles, 7 frames.
@@ -47,6 +49,7 @@ class RenderCli : public ::testing::Test {
                        dir_);
     ASSERT_EQ(r.code, 0) << r.err;
   }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
   static fs::path dir_;
 };
 fs::path RenderCli::dir_;
