@@ -4,6 +4,7 @@
 #include <vtkDataArray.h>
 #include <vtkPointData.h>
 #include <vtkNew.h>
+#include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
@@ -51,21 +52,77 @@ std::string field_units(const std::string& f) {
 // Display scale matching field_units (SI inside, engineering units on screen).
 double field_scale(const std::string& units) { return units == "MPa" ? 1e-6 : units == "mm" ? 1e3 : 1.0; }
 
-// The crack polylines of OUT/cracks.pvd nearest to time t (none when the series has no cracks).
-std::vector<Polyline2D> crack_overlays(const fs::path& dir, double t) {
-  std::vector<Polyline2D> out;
+// Maps a field's values (SI) to colours: display units, automatic range (symmetric about zero with
+// a diverging map for signed fields) or the fixed --range, log scale, colour map; fills the bar.
+class ColourScale {
+ public:
+  ColourScale(const RenderOptions& o, const std::vector<double>& values, ColorBar& bar) : log_(o.log_scale) {
+    const std::string units = field_units(o.field);
+    scale_ = field_scale(units);
+    lo_ = std::numeric_limits<double>::infinity(), hi_ = -lo_;
+    for (double v : values)
+      if (std::isfinite(v)) lo_ = std::min(lo_, v * scale_), hi_ = std::max(hi_, v * scale_);
+    if (!(lo_ <= hi_)) lo_ = 0, hi_ = 1;
+    const bool is_signed = lo_ < 0 && hi_ > 0;
+    if (o.range) lo_ = (*o.range)[0], hi_ = (*o.range)[1];
+    else if (is_signed) lo_ = -std::max(-lo_, hi_), hi_ = -lo_;
+    if (log_) {
+      if (hi_ <= 0) throw std::invalid_argument("--log needs positive values of " + o.field);
+      if (lo_ <= 0) lo_ = hi_ * 1e-4;
+    }
+    if (hi_ == lo_) hi_ = lo_ + (lo_ == 0 ? 1.0 : std::fabs(lo_) * 1e-6);
+    const std::string name = o.colormap.empty() ? (is_signed && !log_ ? "coolwarm" : "viridis") : o.colormap;
+    const auto cm = colormap_from_name(name);
+    if (!cm) throw std::invalid_argument("unknown colour map '" + name + "'; valid: viridis, cividis, coolwarm, gray");
+    map_ = *cm;
+    bar.show = o.colorbar;
+    bar.min = lo_, bar.max = hi_, bar.log = log_;
+    bar.title = o.field + (units.empty() ? "" : " (" + units + ")");
+    bar.table = colormap_table(map_, 256);
+  }
+  std::array<uint8_t, 3> operator()(double v_si) const {
+    const double v = v_si * scale_;
+    const double t = log_ ? (std::log10(std::max(v, lo_)) - std::log10(lo_)) / (std::log10(hi_) - std::log10(lo_))
+                          : (v - lo_) / (hi_ - lo_);
+    return to_rgb8(colormap(map_, std::clamp(t, 0.0, 1.0)));
+  }
+
+ private:
+  bool log_;
+  double scale_ = 1, lo_ = 0, hi_ = 1;
+  ColorMapKind map_ = ColorMapKind::Viridis;
+};
+
+// The frame of OUT/cracks.pvd nearest to time t; null when the run has no crack series.
+struct CrackFrame {
+  vtkSmartPointer<vtkUnstructuredGrid> grid;
+  double time = 0;
+  fs::path file;
+};
+CrackFrame nearest_crack_frame(const fs::path& dir, double t) {
+  CrackFrame cf;
   const fs::path pvd = dir / "cracks.pvd";
-  if (!fs::exists(pvd)) return out;
+  if (!fs::exists(pvd)) return cf;
   const auto idx = io::PvdIndex::load(pvd);
-  if (idx.entries().empty()) return out;
+  if (idx.entries().empty()) return cf;
   auto best = idx.entries().front();
   for (const auto& e : idx.entries())
     if (std::fabs(e.first - t) < std::fabs(best.first - t)) best = e;
   vtkNew<vtkXMLUnstructuredGridReader> r;
-  const fs::path file = dir / best.second;
-  r->SetFileName(file.c_str());
+  cf.file = dir / best.second;
+  r->SetFileName(cf.file.c_str());
   r->Update();
-  vtkUnstructuredGrid* g = r->GetOutput();
+  cf.grid = r->GetOutput();
+  cf.time = best.first;
+  return cf;
+}
+
+// The crack polylines of the crack frame nearest to time t (none when the series has no cracks).
+std::vector<Polyline2D> crack_overlays(const fs::path& dir, double t) {
+  std::vector<Polyline2D> out;
+  const CrackFrame cf = nearest_crack_frame(dir, t);
+  if (!cf.grid) return out;
+  vtkUnstructuredGrid* g = cf.grid;
   for (vtkIdType c = 0; c < g->GetNumberOfCells(); ++c) {
     vtkCell* cell = g->GetCell(c);
     Polyline2D pl;
@@ -126,38 +183,13 @@ Image field_image(const ParticleFrame& f, const View& v, const RenderOptions& o,
   }
   const std::vector<double> per = scalar_field(f, o.field);
   const Raster r = rasterize_2d(f, v, per, 1);
-  const std::string units = field_units(o.field);
-  const double scale = field_scale(units);
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  std::vector<double> shown;
   for (std::size_t i = 0; i < npix; ++i)
-    if (r.covered[i] && std::isfinite(r.values[i])) lo = std::min(lo, r.values[i] * scale), hi = std::max(hi, r.values[i] * scale);
-  if (!(lo <= hi)) lo = 0, hi = 1;
-  const bool is_signed = lo < 0 && hi > 0;
-  if (o.range) lo = (*o.range)[0], hi = (*o.range)[1];
-  else if (is_signed) lo = -std::max(-lo, hi), hi = -lo;  // symmetric about zero for a diverging map
-  if (o.log_scale) {
-    if (hi <= 0) throw std::invalid_argument("--log needs positive values of " + o.field);
-    if (lo <= 0) lo = hi * 1e-4;
-  }
-  if (hi == lo) hi = lo + (lo == 0 ? 1.0 : std::fabs(lo) * 1e-6);
-  std::string cmname = o.colormap.empty() ? (is_signed && !o.log_scale ? "coolwarm" : "viridis") : o.colormap;
-  const auto cm = colormap_from_name(cmname);
-  if (!cm) throw std::invalid_argument("unknown colour map '" + cmname + "'; valid: viridis, cividis, coolwarm, gray");
-  bar.show = o.colorbar;
-  bar.min = lo;
-  bar.max = hi;
-  bar.log = o.log_scale;
-  bar.title = o.field + (units.empty() ? "" : " (" + units + ")");
-  bar.table = colormap_table(*cm, 256);
+    if (r.covered[i]) shown.push_back(r.values[i]);
+  const ColourScale cs(o, shown, bar);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < npix; ++i) {
-    std::array<uint8_t, 3> c = bg;
-    if (r.covered[i]) {
-      const double val = r.values[i] * scale;
-      double tt = o.log_scale ? (std::log10(std::max(val, lo)) - std::log10(lo)) / (std::log10(hi) - std::log10(lo))
-                              : (val - lo) / (hi - lo);
-      c = to_rgb8(colormap(*cm, std::clamp(tt, 0.0, 1.0)));
-    }
+    const std::array<uint8_t, 3> c = r.covered[i] ? cs(r.values[i]) : bg;
     std::copy(c.begin(), c.end(), &img.rgb[3 * i]);
   }
   return img;
@@ -186,28 +218,13 @@ RenderResult render_series(const RenderOptions& o, const std::function<void(std:
     const std::string stamp = o.time_stamp ? format_time(e.time) : "";
     if (f.dim == 3) {
       if (o.fringes) throw std::invalid_argument("fringes of a 3D series need a cut plane (--cut-plane)");
-      RenderOptions oo = o;
       ColorBar bar;
-      // Per-particle colours through the same colour mapping as 2D (a 1-pixel-per-particle "image").
       const std::vector<double> per = scalar_field(f, o.field);
-      const std::string units = field_units(o.field);
-      const double scale = field_scale(units);
-      double lo = *std::min_element(per.begin(), per.end()) * scale, hi = *std::max_element(per.begin(), per.end()) * scale;
-      const bool is_signed = lo < 0 && hi > 0;
-      if (o.range) lo = (*o.range)[0], hi = (*o.range)[1];
-      else if (is_signed) lo = -std::max(-lo, hi), hi = -lo;
-      if (hi == lo) hi = lo + 1;
-      const auto cm = colormap_from_name(o.colormap.empty() ? (is_signed ? "coolwarm" : "viridis") : o.colormap);
-      if (!cm) throw std::invalid_argument("unknown colour map '" + o.colormap + "'");
+      const ColourScale cs(o, per, bar);
       std::vector<std::array<double, 3>> centres(f.x.begin(), f.x.end());
-      std::vector<double> edge(f.x.size(), 0.0);
-      const auto sz = f.arrays.find("size");
-      for (std::size_t p = 0; p < f.x.size(); ++p) edge[p] = sz != f.arrays.end() ? sz->second.values[p] : 1e-3;
+      const std::vector<double> edge = particle_sizes(f);  // "size", else the median spacing
       std::vector<std::array<uint8_t, 3>> colours(f.x.size());
-      for (std::size_t p = 0; p < f.x.size(); ++p) colours[p] = to_rgb8(colormap(*cm, std::clamp((per[p] * scale - lo) / (hi - lo), 0.0, 1.0)));
-      bar.show = o.colorbar;
-      bar.min = lo, bar.max = hi, bar.title = o.field + (units.empty() ? "" : " (" + units + ")");
-      bar.table = colormap_table(*cm, 256);
+      for (std::size_t p = 0; p < f.x.size(); ++p) colours[p] = cs(per[p]);
       Camera3D cam;
       cam.preset = o.camera;
       cam.explicit_view = o.view;
@@ -444,18 +461,10 @@ std::vector<fs::path> render_plots(const fs::path& dir, const fs::path& images, 
 }
 
 fs::path render_cod_profile(const fs::path& dir, const fs::path& images, double time, int width, int height) {
-  const fs::path pvd = dir / "cracks.pvd";
-  if (!fs::exists(pvd)) throw std::runtime_error(pvd.string() + ": no crack series (the scene declares no crack)");
-  const auto idx = io::PvdIndex::load(pvd);
-  if (idx.entries().empty()) throw std::runtime_error(pvd.string() + ": lists no frame");
-  auto best = idx.entries().front();
-  for (const auto& e : idx.entries())
-    if (std::fabs(e.first - time) < std::fabs(best.first - time)) best = e;
-  vtkNew<vtkXMLUnstructuredGridReader> r;
-  const fs::path file = dir / best.second;
-  r->SetFileName(file.c_str());
-  r->Update();
-  vtkUnstructuredGrid* g = r->GetOutput();
+  const CrackFrame cf = nearest_crack_frame(dir, time);
+  if (!cf.grid) throw std::runtime_error((dir / "cracks.pvd").string() + ": no crack series (the scene declares no crack)");
+  vtkUnstructuredGrid* g = cf.grid;
+  const fs::path& file = cf.file;
   vtkDataArray* cn = g->GetPointData()->GetArray("cod_normal");
   vtkDataArray* ct = g->GetPointData()->GetArray("cod_tangential");
   if (!cn || !ct) throw std::runtime_error(file.string() + ": no cod_normal / cod_tangential point data");
@@ -480,7 +489,7 @@ fs::path render_cod_profile(const fs::path& dir, const fs::path& images, double 
   fs::create_directories(images);
   HeadlessContext ctx(width, height);
   const fs::path out = images / "cod_profile.png";
-  write_png(out, render_plot(ctx, series, "Crack opening, " + format_time(best.first), "distance along the crack (mm)",
+  write_png(out, render_plot(ctx, series, "Crack opening, " + format_time(cf.time), "distance along the crack (mm)",
                              "opening (mm)"));
   return out;
 }
