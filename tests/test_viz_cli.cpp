@@ -9,6 +9,11 @@
 #include <sstream>
 #include <unistd.h>
 
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
 #include "libmpm/io/pvd_writer.hpp"
 #include "libmpm/io/vtu_writer.hpp"
 #include "viz/job/render_job.hpp"
@@ -203,6 +208,32 @@ TEST(RenderCli3D, CubesAndCutPlane) {
           dir);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir / "cut" / "sxx_000000.png"));
+  // A crack surface (two triangles across the bar at x = 20 mm) is drawn over the cubes.
+  {
+    vtkNew<vtkPoints> pts;
+    for (auto p : {std::array<double, 3>{0.02, -0.001, -0.001}, {0.02, 0.021, -0.001}, {0.02, 0.021, 0.021}, {0.02, -0.001, 0.021}})
+      pts->InsertNextPoint(p.data());
+    vtkNew<vtkUnstructuredGrid> g;
+    g->SetPoints(pts);
+    vtkIdType t0[3] = {0, 1, 2}, t1[3] = {0, 2, 3};
+    g->InsertNextCell(VTK_TRIANGLE, 3, t0);
+    g->InsertNextCell(VTK_TRIANGLE, 3, t1);
+    vtkNew<vtkXMLUnstructuredGridWriter> w;
+    w->SetFileName((dir / "out" / "cracks_000000.vtu").c_str());
+    w->SetInputData(g);
+    ASSERT_EQ(w->Write(), 1);
+    io::PvdIndex pvd(dir / "out" / "cracks.pvd");
+    pvd.add(0.0, "cracks_000000.vtu");
+    pvd.write();
+  }
+  r = run("render " + (dir / "out").string() + " --frames last --field von_mises --colormap gray --size 320x240 --images " +
+              (dir / "cracked").string(),
+          dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Image img = read_image(dir / "cracked" / "von_mises_000000.png");
+  std::size_t red = 0;
+  for (std::size_t i = 0; i < img.rgb.size(); i += 3) red += img.rgb[i] > 180 && img.rgb[i + 1] < 80 && img.rgb[i + 2] < 80;
+  EXPECT_GT(red, 100u) << "the 3D crack surface is drawn";
   r = run("render " + (dir / "out").string() + " --frames last --fringes dark --fringe-constant 7", dir);
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.err.find("cut plane"), std::string::npos) << r.err;

@@ -228,7 +228,17 @@ RenderResult render_series(const RenderOptions& o, const std::function<void(std:
       Camera3D cam;
       cam.preset = o.camera;
       cam.explicit_view = o.view;
-      out = render_particles_3d(ctx, centres, edge, colours, cam, o.title, stamp, bar, o.background);
+      // Crack surfaces (triangle cells of the crack frame nearest in time) over the particles.
+      std::vector<std::array<std::array<double, 3>, 3>> tris;
+      if (const CrackFrame cf = nearest_crack_frame(dir, e.time); cf.grid)
+        for (vtkIdType c = 0; c < cf.grid->GetNumberOfCells(); ++c) {
+          vtkCell* cell = cf.grid->GetCell(c);
+          if (cell->GetNumberOfPoints() != 3) continue;
+          std::array<std::array<double, 3>, 3> t;
+          for (int k = 0; k < 3; ++k) cf.grid->GetPoint(cell->GetPointId(k), t[k].data());
+          tris.push_back(t);
+        }
+      out = render_particles_3d(ctx, centres, edge, colours, cam, o.title, stamp, bar, o.background, tris);
     } else {
       Frame2D fr;
       fr.title = o.title;

@@ -613,7 +613,8 @@ Image render_frame_2d(HeadlessContext& context, const Frame2D& f) {
 Image render_particles_3d(HeadlessContext& context, const std::vector<std::array<double, 3>>& centres,
                           const std::vector<double>& edge, const std::vector<std::array<uint8_t, 3>>& colours,
                           const Camera3D& camera, const std::string& title, const std::string& time_stamp,
-                          const ColorBar& colorbar, std::array<double, 3> background) {
+                          const ColorBar& colorbar, std::array<double, 3> background,
+                          const std::vector<std::array<std::array<double, 3>, 3>>& crack_triangles) {
   if (edge.size() != centres.size() || colours.size() != centres.size())
     throw std::invalid_argument("render_particles_3d: " + std::to_string(centres.size()) + " centres, " +
                                 std::to_string(edge.size()) + " edges, " + std::to_string(colours.size()) +
@@ -674,6 +675,29 @@ Image render_particles_3d(HeadlessContext& context, const std::vector<std::array
     actor->GetProperty()->SetDiffuse(0.85);
     actor->GetProperty()->SetSpecular(0);
     view->AddActor(actor);
+  }
+
+  if (!crack_triangles.empty()) {
+    vtkRenderer* cracks = scene.add(1, background);
+    set_viewport_pixels(cracks, W, H, 0, 0, std::max(1, W - l.cbar_band), std::max(1, H - l.title_band));
+    cracks->SetActiveCamera(view->GetActiveCamera());
+    vtkNew<vtkPoints> pts;
+    vtkNew<vtkCellArray> tris;
+    for (const auto& t : crack_triangles) {
+      tris->InsertNextCell(3);
+      for (const auto& p : t) tris->InsertCellPoint(pts->InsertNextPoint(p[0], p[1], p[2]));
+    }
+    vtkNew<vtkPolyData> pd;
+    pd->SetPoints(pts);
+    pd->SetPolys(tris);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(pd);
+    mapper->ScalarVisibilityOff();
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    actor->GetProperty()->SetColor(0.9, 0.1, 0.1);
+    actor->GetProperty()->LightingOff();
+    cracks->AddActor(actor);
   }
 
   vtkCamera* cam = view->GetActiveCamera();

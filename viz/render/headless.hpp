@@ -117,10 +117,13 @@ struct Camera3D {
 // lit by a headlight: faces square to the view show their colour exactly). Presets fit the camera to
 // the particles. Title, time stamp and colour bar as in render_frame_2d. Throws
 // std::invalid_argument when the three arrays differ in length or a preset is unknown.
+// crack_triangles: crack surfaces, drawn in red over the particles (always visible, as an overlay
+// layer with the same camera), so embedded cracks show through the body.
 Image render_particles_3d(HeadlessContext& context, const std::vector<std::array<double, 3>>& centres,
                           const std::vector<double>& edge, const std::vector<std::array<uint8_t, 3>>& colours,
                           const Camera3D& camera, const std::string& title, const std::string& time_stamp,
-                          const ColorBar& colorbar, std::array<double, 3> background);
+                          const ColorBar& colorbar, std::array<double, 3> background,
+                          const std::vector<std::array<std::array<double, 3>, 3>>& crack_triangles = {});
 
 // --- plots -------------------------------------------------------------------------------------
 

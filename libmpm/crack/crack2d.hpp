@@ -1,0 +1,78 @@
+// 2D explicit cracks (seed 002, CRAMP): a crack is a polyline whose vertices are massless crack
+// particles; particle-node pairs whose connecting line crosses it use separate velocity fields.
+// This header holds the crack description, the whole-crack crossing test (with the appendix's
+// crack-extent screening) and the scene parser for the "cracks" key.
+#pragma once
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "libmpm/core/types.hpp"
+#include "libmpm/crack/crossing.hpp"
+
+namespace cleave::crack {
+
+struct Crack2D {
+  std::string name;
+  int id = 0;                   // position in the scene's "cracks" array
+  std::vector<Vec<2>> points;   // polyline vertices (massless crack particles), SI; direction
+                                // points[0] -> points[1] -> ... defines above (left) / below (right)
+  std::string contact_law = "frictionless";  // "stick" | "frictionless" | "friction" (Coulomb, mu)
+  double friction = 0.0;                     // Coulomb mu, only for "friction"
+  // Extent of all vertices (Subtask 1). Default: empty (+inf / -inf), so that a crack whose extent
+  // was never computed screens every pair out; call update_extent() after moving the points.
+  Vec<2> lo = Vec<2>::Constant(std::numeric_limits<double>::infinity());
+  Vec<2> hi = Vec<2>::Constant(-std::numeric_limits<double>::infinity());
+  void update_extent();
+};
+
+// Subtask 1: can the particle-node line touch the crack at all? True when the closed rectangle
+// spanned by particle and node intersects the closed extent [lo, hi]. Exact (comparisons only), so
+// screening never changes crack_crossing's answer: every crossing point lies in both boxes.
+inline bool extent_overlaps(const Crack2D& c, const Vec<2>& particle, const Vec<2>& node) {
+  return std::min(particle.x(), node.x()) <= c.hi.x() && std::max(particle.x(), node.x()) >= c.lo.x() &&
+         std::min(particle.y(), node.y()) <= c.hi.y() && std::max(particle.y(), node.y()) >= c.lo.y();
+}
+
+// Whole-crack crossing for a particle-node pair without screening (polyline_crossing in
+// crossing.hpp documents the rules: appendix sign rules per segment, odd/even count, interior
+// vertices decided once; an odd count with mixed sides takes the side of the net count).
+inline Side crack_crossing_unscreened(const Crack2D& c, const Vec<2>& particle, const Vec<2>& node) {
+  return polyline_crossing(c.points.data(), c.points.size(), particle, node);
+}
+
+// Whole-crack crossing for a particle-node pair: Subtask 1 extent screening, then every segment
+// (Subtasks 2-4). Above = velocity field 1 (particle on the left of the directed crack), Below =
+// field 2, None = field 0 (for this crack). Requires update_extent() after the points changed.
+inline Side crack_crossing(const Crack2D& c, const Vec<2>& particle, const Vec<2>& node) {
+  if (!extent_overlaps(c, particle, node)) return Side::None;
+  return crack_crossing_unscreened(c, particle, node);
+}
+
+// Parses the scene key "cracks" (key_path is its scene path, normally "cracks"): an array of
+//   { "name": string, "points": [[x, y], ...], "contact": {...} }        (polyline, >= 2 points)
+//   { "name": string, "from": [x, y], "to": [x, y], "segment_length": L, "contact": {...} }
+//        (a straight crack split into ceil(|to - from| / L) equal segments; the ratio is rounded
+//         down to an integer when within 1e-9 relative of it, so 1.1 / 0.1 gives 11 segments)
+// with the optional "contact": {"law": "stick" | "frictionless" | "friction", "mu": number}
+// ("law" required inside "contact"; "mu" required and >= 0 for "friction", rejected otherwise;
+// default frictionless). length_scale (scene length unit -> metres) multiplies coordinates and
+// segment_length. id = index in the array. Throws cleave::SceneError naming the key path (e.g.
+// "cracks[1].points[2]") for: not an array / not an object, missing name or points, empty or
+// duplicate name, both or neither of the two forms, fewer than 2 points, non-numeric or non-finite
+// coordinates, a zero-length segment (consecutive equal points, or from == to), a self-intersecting
+// polyline ("cracks[i].points": two non-adjacent segments that intersect or touch, or adjacent
+// segments that fold back onto each other), more than 1,000,000 segments, unknown contact law
+// (the valid ones are listed), mu missing / negative / given without "friction", unknown keys.
+// Throws std::invalid_argument if length_scale is not finite and > 0 (a caller bug).
+// Checks that need the model (a crack outside every body or the grid) are the scene reader's.
+std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::string& key_path,
+                                  double length_scale);
+
+// Exact closed-segment intersection test (shared end points count): used by the
+// self-intersection check and exposed for tests.
+bool segments_intersect(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c, const Vec<2>& d);
+
+}  // namespace cleave::crack
