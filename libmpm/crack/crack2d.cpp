@@ -1,0 +1,172 @@
+#include "libmpm/crack/crack2d.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "libmpm/core/error.hpp"
+#include "libmpm/scene/json_reader.hpp"
+
+namespace cleave::crack {
+namespace {
+
+constexpr std::size_t kMaxSegments = 1000000;
+
+// c is exactly collinear with a-b: is it inside the segment's closed box (hence on the segment)?
+bool within(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c) {
+  return std::min(a.x(), b.x()) <= c.x() && c.x() <= std::max(a.x(), b.x()) &&
+         std::min(a.y(), b.y()) <= c.y() && c.y() <= std::max(a.y(), b.y());
+}
+
+int sign_of(double v) { return (v > 0.0) - (v < 0.0); }
+
+std::string idx(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
+
+// Adjacent segments a->b->c fold back onto each other: exactly collinear and reversing direction.
+// (The sign of a floating difference is exact, so the direction test is exact too.)
+bool folds_back(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c) {
+  if (area_sign(a, b, c) != 0) return false;
+  return sign_of(b.x() - a.x()) * sign_of(c.x() - b.x()) < 0 ||
+         sign_of(b.y() - a.y()) * sign_of(c.y() - b.y()) < 0;
+}
+
+void check_simple(const std::vector<Vec<2>>& p, const std::string& path) {
+  const std::size_t nseg = p.size() - 1;
+  auto seg = [&](std::size_t i) {
+    return "segment " + std::to_string(i) + " (points[" + std::to_string(i) + "] to points[" +
+           std::to_string(i + 1) + "])";
+  };
+  for (std::size_t i = 0; i + 1 < nseg; ++i)
+    if (folds_back(p[i], p[i + 1], p[i + 2]))
+      throw SceneError(path, "self-intersecting crack: " + seg(i + 1) + " folds back onto " + seg(i));
+  // Non-adjacent pairs, with a box prefilter (exact: comparisons only).
+  for (std::size_t i = 0; i < nseg; ++i) {
+    const Vec<2> lo = p[i].cwiseMin(p[i + 1]), hi = p[i].cwiseMax(p[i + 1]);
+    for (std::size_t j = i + 2; j < nseg; ++j) {
+      const Vec<2> lo2 = p[j].cwiseMin(p[j + 1]), hi2 = p[j].cwiseMax(p[j + 1]);
+      if ((lo.array() > hi2.array()).any() || (lo2.array() > hi.array()).any()) continue;
+      if (segments_intersect(p[i], p[i + 1], p[j], p[j + 1]))
+        throw SceneError(path, "self-intersecting crack: " + seg(i) + " and " + seg(j) +
+                                   " intersect or touch");
+    }
+  }
+}
+
+std::vector<Vec<2>> read_points(const ObjectReader& r, double scale) {
+  const std::string path = r.at("points");
+  const nlohmann::json& pts = r["points"];
+  if (!pts.is_array()) throw SceneError(path, "expected an array of points [[x, y], ...]");
+  if (pts.size() < 2)
+    throw SceneError(path, "a crack needs at least 2 points (got " + std::to_string(pts.size()) + ")");
+  if (pts.size() - 1 > kMaxSegments)
+    throw SceneError(path, "too many points (at most " + std::to_string(kMaxSegments + 1) + ")");
+  std::vector<Vec<2>> out;
+  out.reserve(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const std::string pi = idx(path, i);
+    out.push_back(ObjectReader::vec_of<2>(pts[i], pi, scale));
+    if (!out.back().allFinite()) throw SceneError(pi, "coordinates overflow after unit scaling");
+    if (i > 0 && out[i] == out[i - 1])
+      throw SceneError(pi, "zero-length crack segment (same point as points[" + std::to_string(i - 1) + "])");
+  }
+  check_simple(out, path);
+  return out;
+}
+
+std::vector<Vec<2>> read_straight(const ObjectReader& r, double scale) {
+  const Vec<2> from = r.vec<2>("from", scale);
+  const Vec<2> to = r.vec<2>("to", scale);
+  const double len = r.positive("segment_length", scale);
+  if (!from.allFinite()) throw SceneError(r.at("from"), "coordinates overflow after unit scaling");
+  if (!to.allFinite()) throw SceneError(r.at("to"), "coordinates overflow after unit scaling");
+  if (to == from) throw SceneError(r.at("to"), "zero-length crack (same point as \"from\")");
+  const double ratio = (to - from).norm() / len;
+  if (!std::isfinite(ratio) || ratio > static_cast<double>(kMaxSegments))
+    throw SceneError(r.at("segment_length"), "too small: more than " + std::to_string(kMaxSegments) +
+                                                 " segments");
+  const double nearest = std::round(ratio);
+  const double n_real = std::abs(ratio - nearest) <= 1e-9 * ratio ? nearest : std::ceil(ratio);
+  const std::size_t n = std::max<std::size_t>(1, static_cast<std::size_t>(n_real));
+  std::vector<Vec<2>> out(n + 1);
+  for (std::size_t k = 0; k <= n; ++k)
+    out[k] = from + (to - from) * (static_cast<double>(k) / static_cast<double>(n));
+  out[n] = to;
+  for (std::size_t k = 1; k <= n; ++k)
+    if (out[k] == out[k - 1])
+      throw SceneError(r.at("segment_length"), "too small for the coordinates' precision");
+  return out;
+}
+
+void read_contact(const ObjectReader& cr, Crack2D& c) {
+  const ObjectReader r(cr["contact"], cr.at("contact"), {"law", "mu"});
+  const std::string law = r.string("law");
+  if (law != "stick" && law != "frictionless" && law != "friction")
+    throw SceneError(r.at("law"), "unknown contact law \"" + law + "\"; valid laws: stick, frictionless, friction");
+  c.contact_law = law;
+  if (law == "friction") {
+    if (!r.has("mu")) throw SceneError(r.at("mu"), "missing (required for law \"friction\")");
+    const double mu = r.number("mu");
+    if (!(mu >= 0.0)) throw SceneError(r.at("mu"), "must be >= 0 (got " + r["mu"].dump() + ")");
+    c.friction = mu;
+  } else if (r.has("mu")) {
+    throw SceneError(r.at("mu"), "only valid with law \"friction\" (law is \"" + law + "\")");
+  }
+}
+
+}  // namespace
+
+void Crack2D::update_extent() {
+  lo = Vec<2>::Constant(std::numeric_limits<double>::infinity());
+  hi = Vec<2>::Constant(-std::numeric_limits<double>::infinity());
+  for (const Vec<2>& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+}
+
+bool segments_intersect(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c, const Vec<2>& d) {
+  const int o1 = area_sign(a, b, c), o2 = area_sign(a, b, d);
+  const int o3 = area_sign(c, d, a), o4 = area_sign(c, d, b);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  return (o1 == 0 && within(a, b, c)) || (o2 == 0 && within(a, b, d)) ||
+         (o3 == 0 && within(c, d, a)) || (o4 == 0 && within(c, d, b));
+}
+
+std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::string& key_path,
+                                  double length_scale) {
+  if (!std::isfinite(length_scale) || length_scale <= 0.0)
+    throw std::invalid_argument("parse_cracks: length_scale must be finite and > 0");
+  if (!cracks.is_array()) throw SceneError(key_path, "expected an array of crack objects");
+  std::vector<Crack2D> out;
+  out.reserve(cracks.size());
+  std::map<std::string, std::size_t> names;
+  for (std::size_t i = 0; i < cracks.size(); ++i) {
+    const ObjectReader r(cracks[i], idx(key_path, i),
+                         {"name", "points", "from", "to", "segment_length", "contact"});
+    Crack2D c;
+    c.id = static_cast<int>(i);
+    c.name = r.string("name");
+    if (c.name.empty()) throw SceneError(r.at("name"), "must not be empty");
+    if (const auto [it, fresh] = names.emplace(c.name, i); !fresh)
+      throw SceneError(r.at("name"), "duplicate crack name \"" + c.name + "\" (also " +
+                                         idx(key_path, it->second) + ")");
+    const bool has_points = r.has("points");
+    const bool has_straight = r.has("from") || r.has("to") || r.has("segment_length");
+    if (has_points && has_straight) {
+      const char* k = r.has("from") ? "from" : r.has("to") ? "to" : "segment_length";
+      throw SceneError(r.at(k), "give either \"points\" or \"from\"/\"to\"/\"segment_length\", not both");
+    }
+    if (!has_points && !has_straight)
+      throw SceneError(r.at("points"), "missing (give \"points\", or \"from\", \"to\" and \"segment_length\")");
+    c.points = has_points ? read_points(r, length_scale) : read_straight(r, length_scale);
+    if (r.has("contact")) read_contact(r, c);
+    c.update_extent();
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+}  // namespace cleave::crack
