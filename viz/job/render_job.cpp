@@ -59,10 +59,20 @@ class ColourScale {
   ColourScale(const RenderOptions& o, const std::vector<double>& values, ColorBar& bar) : log_(o.log_scale) {
     const std::string units = field_units(o.field);
     scale_ = field_scale(units);
-    lo_ = std::numeric_limits<double>::infinity(), hi_ = -lo_;
-    for (double v : values)
-      if (std::isfinite(v)) lo_ = std::min(lo_, v * scale_), hi_ = std::max(hi_, v * scale_);
-    if (!(lo_ <= hi_)) lo_ = 0, hi_ = 1;
+    // Automatic range: the 0.5 % and 99.5 % quantiles, so that a few singular particles (load points,
+    // supports, crack tips) do not wash out the rest of the image; --range overrides.
+    std::vector<double> v;
+    v.reserve(values.size());
+    for (double x : values)
+      if (std::isfinite(x)) v.push_back(x * scale_);
+    lo_ = 0, hi_ = 1;
+    if (!v.empty()) {
+      const std::size_t a = std::size_t(0.005 * (v.size() - 1)), b = std::size_t(0.995 * (v.size() - 1));
+      std::nth_element(v.begin(), v.begin() + a, v.end());
+      lo_ = v[a];
+      std::nth_element(v.begin(), v.begin() + b, v.end());
+      hi_ = v[b];
+    }
     const bool is_signed = lo_ < 0 && hi_ > 0;
     if (o.range) lo_ = (*o.range)[0], hi_ = (*o.range)[1];
     else if (is_signed) lo_ = -std::max(-lo_, hi_), hi_ = -lo_;
