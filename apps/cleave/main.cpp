@@ -119,6 +119,7 @@ void print_check(const Model<Dim>& m) {
 template <int Dim>
 int run_dim(const nlohmann::json& scene, const Args& a) {
   Model<Dim> m = build_model<Dim>(scene);
+  for (const auto& w : m.warnings) std::fprintf(stderr, "cleave: warning: %s\n", w.c_str());
   if (a.command == "check") {
     print_check(m);
     return kOk;

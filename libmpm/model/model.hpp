@@ -55,6 +55,7 @@ struct Model {
   double stable_dt = 0.0;  // h / c_max at the start
   double energy_blowup_factor = 10.0;
   OutputSettings output;
+  std::vector<std::string> warnings;  // doubts about the scene that are not errors (printed by the CLI)
 };
 
 }  // namespace cleave
