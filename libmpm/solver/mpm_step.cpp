@@ -54,10 +54,13 @@ class MpmStepper final : public Stepper<Dim> {
 
     task1_extrapolate();
     apply_momentum_conditions();  // Task 2
-    if (traits_.update_before_forces) nodal_velocities();
-    if (traits_.update_before_forces) stress_pass<true, true, false>(dts);  // Tasks 2-3
-    else stress_pass<false, true, false>(0.0);                                // Task 3
-    finish_forces();                                                                                // Task 3
+    if (traits_.update_before_forces) {  // Tasks 2-3: USF and USAVG update stresses first
+      nodal_velocities();
+      stress_pass<true, true, false>(dts);
+    } else {
+      stress_pass<false, true, false>(0.0);  // Task 3 only
+    }
+    finish_forces();  // Task 3, grid part
     task4_update_momenta(dt);
     const bool late_update = traits_.update_after_move || traits_.reextrapolate;
     StepProblem problem = task5_update_particles(dt, traits_.reextrapolate, /*move=*/!late_update);
