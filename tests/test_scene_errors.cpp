@@ -607,9 +607,8 @@ TEST(SceneUnits, Defaults) {
   EXPECT_TRUE(m.conditions.node.empty());
 }
 
-// BUG: with a non-SI length unit and no analysis.thickness, the plane-strain default thickness is
-// 1 / L metres (1000 m for "mm") instead of 1 m: scene.cpp read_analysis passes 1.0 / length as the
-// fallback of positive_or, which does not scale its fallback. Particle masses come out 1000x too big.
+// Regression: with a non-SI length unit and no analysis.thickness, the plane-strain default thickness
+// must be 1 m (it was once 1 / L metres, 1000 m for "mm", making masses 1000x too big).
 TEST(SceneUnits, PlaneStrainDefaultThicknessIsUnitDepthInAnyUnits) {
   auto s = scene2d();
   s["units"] = {{"length", "mm"}};
@@ -748,11 +747,8 @@ TEST(SceneGuards, TooManyGridNodes3D) {
   EXPECT_EXIT(build_bounded<3>(s, "grid.cell_size"), ::testing::ExitedWithCode(0), "");
 }
 
-// BUG: scene.cpp (derived grid, line 173, and explicit grid, line 162) converts the cell count to
-// int before the "more than 2e9 nodes" guard (lines 176-178). With more than INT_MAX cells along an
-// axis the conversion overflows (undefined behaviour; in practice INT_MIN), the node counts turn
-// negative, in 3D their product is negative and passes the guard, and the particle fill then loops
-// over ~1e23 lattice sites: `cleave check` hangs. Expected: SceneError at grid.cell_size, as in 2D.
+// Regression: a cell count beyond int range must be rejected at grid.cell_size before any int
+// conversion (it once overflowed, made 3D node counts negative and hung `cleave check`).
 TEST(SceneGuards, CellCountOverflowingIntIsRejected3D) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   auto s = scene3d();
