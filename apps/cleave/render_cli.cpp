@@ -218,20 +218,12 @@ int viz_command(const std::vector<std::string>& args) {
       const auto mv = numbers("--map", *map, 3, 4);
       if (!(mv[2] > 0)) throw std::invalid_argument("--map: SCALE must be positive");
       PhotoMap pm{mv[0] * L, mv[1] * L, mv[2] * L, mv.size() > 3 ? mv[3] * std::numbers::pi / 180 : 0.0};
-      std::optional<std::filesystem::path> pts;
-      if (points) pts = *points;
       const auto dir = std::filesystem::is_directory(o.series) ? o.series : o.series.parent_path();
       const std::filesystem::path prefix = out_prefix.empty() ? dir / "compare" : std::filesystem::path(out_prefix);
-      // Points are read in the length unit too.
-      std::optional<std::filesystem::path> scaled;
-      if (pts && L != 1.0) {
-        auto p = read_fringe_points(*pts);
-        scaled = prefix.string() + "_points_si.txt";
-        FILE* f = std::fopen(scaled->c_str(), "w");
-        if (!f) throw std::runtime_error("cannot write " + scaled->string());
-        for (const auto& q : p) std::fprintf(f, "%.17g %.17g %.17g\n", q[0] * L, q[1] * L, q[2]);
-        std::fclose(f);
-        pts = scaled;
+      std::optional<std::vector<std::array<double, 3>>> pts;
+      if (points) {
+        pts = read_fringe_points(*points);
+        for (auto& q : *pts) q[0] *= L, q[1] *= L;  // coordinates in --length-unit; orders unchanged
       }
       const CompareResult r = compare_with_photo(o, *photo, pm, pts, prefix);
       std::printf("agreement: normalised cross-correlation %.4f over %zu pixels\n", r.ncc, r.pixels);

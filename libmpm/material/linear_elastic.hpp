@@ -4,10 +4,10 @@
 // kind (the common case, and the one the benchmark measures).
 #pragma once
 #include <cmath>
-#include <set>
 
 #include "libmpm/core/error.hpp"
 #include "libmpm/material/material.hpp"
+#include "libmpm/scene/json_reader.hpp"
 
 namespace cleave {
 
@@ -15,19 +15,12 @@ template <int Dim>
 class LinearElastic final : public Material<Dim> {
  public:
   explicit LinearElastic(const MaterialArgs& a) : analysis_(a.analysis) {
-    const std::set<std::string> keys = {"name", "type", "E", "nu", "density"};
-    for (auto it = a.json.begin(); it != a.json.end(); ++it)
-      if (!keys.count(it.key()))
-        throw SceneError(a.key_path + "." + it.key(),
-                         "unknown key for a linear_elastic material; valid: name, type, E, nu, density");
-    E_ = read_positive(a.json, "E", a.key_path, a.units.factor(Quantity::Stress));
-    if (!a.json.contains("nu")) throw SceneError(a.key_path + ".nu", "missing (Poisson's ratio)");
-    if (!a.json["nu"].is_number()) throw SceneError(a.key_path + ".nu", "expected a number");
-    nu_ = a.json["nu"].get<double>();
+    const ObjectReader r(a.json, a.key_path, {"name", "type", "E", "nu", "density"});
+    E_ = r.positive("E", a.units.factor(Quantity::Stress));
+    nu_ = r.number("nu");
     if (!(nu_ > -1.0 && nu_ < 0.5))
-      throw SceneError(a.key_path + ".nu", "Poisson's ratio must satisfy -1 < nu < 0.5 (got " +
-                                               std::to_string(nu_) + ")");
-    this->density_ = read_positive(a.json, "density", a.key_path, a.units.factor(Quantity::Density));
+      throw SceneError(r.at("nu"), "Poisson's ratio must satisfy -1 < nu < 0.5 (got " + std::to_string(nu_) + ")");
+    this->density_ = r.positive("density", a.units.factor(Quantity::Density));
     this->name_ = a.json.value("name", std::string());
     G_ = E_ / (2.0 * (1.0 + nu_));
     lambda_ = E_ * nu_ / ((1.0 + nu_) * (1.0 - 2.0 * nu_));

@@ -44,8 +44,4 @@ using MaterialRegistry = Registry<Material<Dim>, const MaterialArgs&>;
 // Registers the built-in materials (explicit, so a static library cannot drop them).
 void register_builtin_materials();
 
-// Reads a required positive finite number `key` of j (scaled by `factor`), or throws a SceneError.
-double read_positive(const nlohmann::json& j, const std::string& key, const std::string& key_path,
-                     double factor);
-
 }  // namespace cleave

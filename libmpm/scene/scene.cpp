@@ -228,9 +228,7 @@ Model<Dim> build_model(const json& scene) {
           if (!shape.contains(x)) continue;
           // Every node of the particle's stencil must exist.
           for (int d = 0; d < Dim; ++d) {
-            const double xi = (x[d] - m.grid.origin[d]) / h;
-            const int base = K == 3 ? static_cast<int>(std::floor(xi + 0.5)) - 1 : static_cast<int>(std::floor(xi));
-            if (base < 0 || base + K - 1 > m.grid.nodes[d] - 1)
+            if (!stencil_fits((x[d] - m.grid.origin[d]) / h, m.grid.nodes[d], K))
               throw SceneError(r.at("shape"), "body '" + b.name + "' reaches outside the grid along axis " +
                                                   std::string(1, "xyz"[d]) + " (a particle at " +
                                                   std::to_string(x[d]) + " m needs grid nodes beyond the grid; "

@@ -70,4 +70,12 @@ struct UGimpShape {
 
 enum class ShapeFunctionKind { Linear, UGimp };
 
+// True when every node of a particle at xi (cells from the grid origin) exists on an axis of `nodes`
+// nodes, for a style of stencil width K: linear nodes [floor(xi), +1], uGIMP [floor(xi + 1/2) - 1, +2].
+// False for NaN too.
+inline bool stencil_fits(double xi, int nodes, int K) {
+  const double lo = K == 3 ? 0.5 : 0.0, hi = K == 3 ? 1.5 : 1.0;
+  return xi >= lo && xi < nodes - hi;
+}
+
 }  // namespace cleave

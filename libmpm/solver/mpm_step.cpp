@@ -32,6 +32,7 @@ class MpmStepper final : public Stepper<Dim> {
   }
 
   double time() const override { return time_; }
+  double external_work() const override { return external_work_; }
   long step_count() const override { return step_; }
   void restore(double t, long s, double w) override {
     time_ = t;

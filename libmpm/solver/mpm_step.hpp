@@ -34,6 +34,7 @@ class Stepper {
   virtual StepProblem step() = 0;
   virtual GlobalState<Dim> global_state() const = 0;
   virtual double time() const = 0;
+  virtual double external_work() const = 0;
   virtual long step_count() const = 0;
   // Restores counters when resuming from a checkpoint.
   virtual void restore(double time, long step, double external_work) = 0;

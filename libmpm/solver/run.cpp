@@ -105,7 +105,7 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
     ck.scene_hash = opt.scene_hash;
     ck.time = stepper->time();
     ck.step = stepper->step_count();
-    ck.external_work = stepper->global_state().external_work;
+    ck.external_work = stepper->external_work();
     io::write_checkpoint<Dim>(ck_path, m, ck);
   };
   auto record_global = [&]() {

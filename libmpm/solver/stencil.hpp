@@ -7,6 +7,7 @@
 
 #include "libmpm/core/types.hpp"
 #include "libmpm/model/grid.hpp"
+#include "libmpm/shape/shape_function.hpp"
 
 namespace cleave {
 
@@ -79,17 +80,11 @@ struct Stencil {
   }
 };
 
-// True when every node of a particle at x exists: the "left the grid" test. In cells, the stencil
-// of a linear particle is [floor(xi), +1], of a uGIMP particle [floor(xi + 1/2) - 1, +2].
+// True when every node of a particle at x exists: the "left the grid" test.
 template <int Dim, class SF>
 inline bool stencil_inside(const GridGeometry<Dim>& G, double inv_h, const Vec<Dim>& x) {
-  constexpr double lo = SF::K == 3 ? 0.5 : 0.0;
-  constexpr double hi = SF::K == 3 ? 1.5 : 1.0;
   bool inside = true;
-  for (int d = 0; d < Dim; ++d) {
-    const double xi = (x[d] - G.origin[d]) * inv_h;
-    inside = inside && xi >= lo && xi < G.nodes[d] - hi;  // false for NaN too
-  }
+  for (int d = 0; d < Dim; ++d) inside = inside && stencil_fits((x[d] - G.origin[d]) * inv_h, G.nodes[d], SF::K);
   return inside;
 }
 

@@ -338,7 +338,8 @@ double fringe_order_rms(const ParticleFrame& f, const PhotoelasticSettings& s, c
 }
 
 CompareResult compare_with_photo(const RenderOptions& o, const fs::path& photo_file, const PhotoMap& map,
-                                 const std::optional<fs::path>& points, const fs::path& out_prefix) {
+                                 const std::optional<std::vector<std::array<double, 3>>>& points,
+                                 const fs::path& out_prefix) {
   const Image photo = read_image(photo_file);
   const auto entries = read_series(o.series);
   const auto sel = select_frames(entries, o.frames);
@@ -401,10 +402,7 @@ CompareResult compare_with_photo(const RenderOptions& o, const fs::path& photo_f
     }
   write_png(out_prefix.string() + "_side_by_side.png", side);
   write_png(out_prefix.string() + "_overlay.png", over);
-  if (points) {
-    const auto pts = read_fringe_points(*points);
-    res.fringe_rms = fringe_order_rms(f, o.photo, pts, &res.points_used);
-  }
+  if (points) res.fringe_rms = fringe_order_rms(f, o.photo, *points, &res.points_used);
   return res;
 }
 

@@ -72,7 +72,7 @@ struct CompareResult {
   std::size_t points_used = 0;
 };
 CompareResult compare_with_photo(const RenderOptions&, const std::filesystem::path& photo, const PhotoMap&,
-                                 const std::optional<std::filesystem::path>& points,
+                                 const std::optional<std::vector<std::array<double, 3>>>& points,
                                  const std::filesystem::path& out_prefix);
 // Points file: "x y N" per line (model units m, fringe order); '#' comments.
 std::vector<std::array<double, 3>> read_fringe_points(const std::filesystem::path&);
