@@ -474,7 +474,7 @@ TEST(ParseCracks, ErrorsNameTheKeyPath) {
       {R"([OK, {"name": "b", "points": [[0, 0], [1, 0]], "from": [0, 0]}])", "cracks[1].from", "not both"},
       // Contact.
       {R"([OK, {"name": "b", "points": [[0, 0], [1, 0]], "contact": {"law": "glue"}}])", "cracks[1].contact.law",
-       "unknown contact law \"glue\"; valid laws: stick, frictionless, friction"},
+       "unknown contact law \"glue\"; valid laws: stick, frictionless, friction, none"},
       {R"([OK, {"name": "b", "points": [[0, 0], [1, 0]], "contact": {}}])", "cracks[1].contact.law", "missing"},
       {R"([OK, {"name": "b", "points": [[0, 0], [1, 0]], "contact": "stick"}])", "cracks[1].contact", "expected an object"},
       {R"([OK, {"name": "b", "points": [[0, 0], [1, 0]], "contact": {"law": "friction"}}])", "cracks[1].contact.mu", "missing"},

@@ -34,6 +34,8 @@ Usage:
 Commands:
   run     Simulate SCENE (a JSON scene, see docs/scenes.md). Writes into DIR:
             particles.pvd + particles_NNNNNN.vtu   particle time series (VTK XML)
+            cracks.pvd + cracks_NNNNNN.vtu         crack paths, surfaces and opening (cracked
+                                                   scenes only)
             global.csv                             energies, external work, momentum
             checkpoint.bin                         restart state at the last frame
             run.json                               status: running | complete | aborted
@@ -112,6 +114,11 @@ void print_check(const Model<Dim>& m) {
   std::printf(")\nmethod: %s, %s; dt = %.6g s (stable limit %.6g s), %ld steps to %.6g s\n",
               m.shape_function == ShapeFunctionKind::UGimp ? "uGIMP" : "linear", scheme_name(m.scheme), m.dt,
               m.stable_dt, static_cast<long>(std::ceil(m.end_time / m.dt - 1e-9)), m.end_time);
+  if constexpr (Dim == 2)
+    for (const auto& c : m.cracks)
+      std::printf("crack '%s': %zu segments, contact %s%s, %s detection\n", c.name.c_str(), c.points.size() - 1,
+                  c.contact_law.c_str(), c.contact_law == "friction" ? (" mu=" + std::to_string(c.friction)).c_str() : "",
+                  c.detection == crack::Crack2D::Detection::Volume ? "volume" : "displacement");
   std::printf("output: every %.6g s (%zu fields), global.csv every %.6g s\n", m.output.interval,
               m.output.fields.size(), m.output.global_interval);
 }
@@ -133,9 +140,14 @@ int run_dim(const nlohmann::json& scene, const Args& a) {
   opt.scene_hash = scene_hash(scene);
   opt.progress_interval_s = printer.interval();
   if (!a.quiet) opt.progress = [&](const RunProgress& p) { printer(p); };
+  long warnings = 0;
+  opt.log = [&](const std::string& w) {  // the first few in full, then a count at the end
+    if (++warnings <= 5) std::fprintf(stderr, "\ncleave: warning: %s\n", w.c_str());
+  };
   try {
     const RunSummary s = run_model<Dim>(m, opt);
     printer.finish();
+    if (warnings > 5) std::fprintf(stderr, "cleave: %ld warnings in all (5 shown)\n", warnings);
     const double ns = 1e9 * s.wall_s / std::max(1.0, double(s.steps) * m.particles.size());
     std::printf("done: %ld steps to t = %.6g s, %zu particles, %d frames, %s wall (%.0f ns/particle-step, %d threads); "
                 "output in %s\n",

@@ -101,10 +101,10 @@ std::vector<Vec<2>> read_straight(const ObjectReader& r, double scale) {
 }
 
 void read_contact(const ObjectReader& cr, Crack2D& c) {
-  const ObjectReader r(cr["contact"], cr.at("contact"), {"law", "mu"});
+  const ObjectReader r(cr["contact"], cr.at("contact"), {"law", "mu", "detection", "v_sep", "v_contact"});
   const std::string law = r.string("law");
-  if (law != "stick" && law != "frictionless" && law != "friction")
-    throw SceneError(r.at("law"), "unknown contact law \"" + law + "\"; valid laws: stick, frictionless, friction");
+  if (law != "stick" && law != "frictionless" && law != "friction" && law != "none")
+    throw SceneError(r.at("law"), "unknown contact law \"" + law + "\"; valid laws: stick, frictionless, friction, none");
   c.contact_law = law;
   if (law == "friction") {
     if (!r.has("mu")) throw SceneError(r.at("mu"), "missing (required for law \"friction\")");
@@ -113,6 +113,22 @@ void read_contact(const ObjectReader& cr, Crack2D& c) {
     c.friction = mu;
   } else if (r.has("mu")) {
     throw SceneError(r.at("mu"), "only valid with law \"friction\" (law is \"" + law + "\")");
+  }
+  const std::string det = r.string_or("detection", "volume");
+  if (det == "volume") {
+    c.detection = Crack2D::Detection::Volume;
+    c.v_sep = r.number_or("v_sep", 0.9);
+    c.v_contact = r.number_or("v_contact", 1.1);
+    if (!(c.v_sep > 0.0 && c.v_sep < 1.0))
+      throw SceneError(r.at("v_sep"), "must lie between 0 and 1 (relative nodal volume below which faces are apart)");
+    if (!(c.v_contact > 1.0 && std::isfinite(c.v_contact)))
+      throw SceneError(r.at("v_contact"), "must be greater than 1 (relative nodal volume above which faces touch)");
+  } else if (det == "displacement") {
+    c.detection = Crack2D::Detection::Displacement;
+    for (const char* k : {"v_sep", "v_contact"})
+      if (r.has(k)) throw SceneError(r.at(k), "only valid with detection \"volume\"");
+  } else {
+    throw SceneError(r.at("detection"), "unknown contact detection \"" + det + "\"; valid: volume, displacement");
   }
 }
 
@@ -164,6 +180,7 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
     c.points = has_points ? read_points(r, length_scale) : read_straight(r, length_scale);
     if (r.has("contact")) read_contact(r, c);
     c.update_extent();
+    c.above = c.below = c.points;
     out.push_back(std::move(c));
   }
   return out;

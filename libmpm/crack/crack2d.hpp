@@ -19,8 +19,18 @@ struct Crack2D {
   int id = 0;                   // position in the scene's "cracks" array
   std::vector<Vec<2>> points;   // polyline vertices (massless crack particles), SI; direction
                                 // points[0] -> points[1] -> ... defines above (left) / below (right)
-  std::string contact_law = "frictionless";  // "stick" | "frictionless" | "friction" (Coulomb, mu)
+  // "stick" | "frictionless" | "friction" (Coulomb, mu) | "none" (faces may interpenetrate: for
+  // cracks known to stay open, and for the crack patch test against a half model, which has none)
+  std::string contact_law = "frictionless";
   double friction = 0.0;                     // Coulomb mu, only for "friction"
+  // Contact detection: seed 002's nodal volume (V_rel > v_contact: contact; V_rel < v_sep: apart;
+  // between: approaching faces are in contact) or seed 000's nodal displacement (approaching faces
+  // whose displacements overlap are in contact).
+  enum class Detection { Volume, Displacement } detection = Detection::Volume;
+  double v_sep = 0.9, v_contact = 1.1;
+  // The surfaces above and below (crack particles moved with the velocity field of each side), in
+  // step with `points`; the crack opening displacement is above - below. Set from points when empty.
+  std::vector<Vec<2>> above, below;
   // Extent of all vertices (Subtask 1). Default: empty (+inf / -inf), so that a crack whose extent
   // was never computed screens every pair out; call update_extent() after moving the points.
   Vec<2> lo = Vec<2>::Constant(std::numeric_limits<double>::infinity());
@@ -56,9 +66,11 @@ inline Side crack_crossing(const Crack2D& c, const Vec<2>& particle, const Vec<2
 //   { "name": string, "from": [x, y], "to": [x, y], "segment_length": L, "contact": {...} }
 //        (a straight crack split into ceil(|to - from| / L) equal segments; the ratio is rounded
 //         down to an integer when within 1e-9 relative of it, so 1.1 / 0.1 gives 11 segments)
-// with the optional "contact": {"law": "stick" | "frictionless" | "friction", "mu": number}
+// with the optional "contact": {"law": "stick" | "frictionless" | "friction" | "none", "mu": number,
+// "detection": "volume" | "displacement", "v_sep": number, "v_contact": number}
 // ("law" required inside "contact"; "mu" required and >= 0 for "friction", rejected otherwise;
-// default frictionless). length_scale (scene length unit -> metres) multiplies coordinates and
+// default frictionless; detection default "volume" with v_sep 0.9 < 1 < v_contact 1.1, the two
+// critical volumes only valid with "volume"). above/below start equal to points. length_scale (scene length unit -> metres) multiplies coordinates and
 // segment_length. id = index in the array. Throws cleave::SceneError naming the key path (e.g.
 // "cracks[1].points[2]") for: not an array / not an object, missing name or points, empty or
 // duplicate name, both or neither of the two forms, fewer than 2 points, non-numeric or non-finite

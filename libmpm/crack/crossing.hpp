@@ -178,11 +178,15 @@ inline Side vertex_side(int c1, int c2, int turn) {
 //     touches the crack), with the side by the sector rule.
 // The crack's two end points (tips) follow the appendix unchanged: a node on a tip is separated,
 // a line grazing a tip is not.
+// When `segment` is given, it receives the index of one crossed segment on the returned side (at
+// an interior vertex, the segment that ends there): the crack normal of seed 002's contact is taken
+// from it.
 inline Side polyline_crossing(const Vec<2>* points, std::size_t n, const Vec<2>& particle,
-                              const Vec<2>& node) {
+                              const Vec<2>& node, std::size_t* segment = nullptr) {
   if (n < 2) return Side::None;
   const std::size_t nseg = n - 1;
   int count = 0, net = 0;
+  std::size_t seg_above = 0, seg_below = 0;
   int s_next = area_sign(particle, node, points[0]);  // sign (1 2 v_j), shared by two segments
   for (std::size_t j = 0; j < nseg; ++j) {
     const Vec<2>& x3 = points[j];
@@ -210,6 +214,7 @@ inline Side polyline_crossing(const Vec<2>* points, std::size_t n, const Vec<2>&
         if (s != Side::None) {
           ++count;
           net += s == Side::Above ? 1 : -1;
+          (s == Side::Above ? seg_above : seg_below) = j;
         }
       }
       continue;  // this segment's only contact with the line is its end point x4
@@ -222,9 +227,11 @@ inline Side polyline_crossing(const Vec<2>* points, std::size_t n, const Vec<2>&
     if (s != Side::None) {
       ++count;
       net += s == Side::Above ? 1 : -1;
+      (s == Side::Above ? seg_above : seg_below) = j;
     }
   }
   if (count % 2 == 0) return Side::None;
+  if (segment) *segment = net > 0 ? seg_above : seg_below;
   return net > 0 ? Side::Above : Side::Below;
 }
 

@@ -6,7 +6,7 @@
 namespace cleave::io {
 namespace {
 
-constexpr uint64_t kMagic = 0x32504B4345564C43ull;  // "CLVECKP2" (with rotation)
+constexpr uint64_t kMagic = 0x33504B4345564C43ull;  // "CLVECKP3" (with rotation and cracks)
 
 template <class T>
 void put(std::ofstream& o, const std::vector<T>& v) {
@@ -31,6 +31,7 @@ void write_checkpoint(const std::filesystem::path& file, const Model<Dim>& m, co
     o.write(reinterpret_cast<const char*>(&info), sizeof(info));
     const auto& P = m.particles;
     put(o, P.x), put(o, P.v), put(o, P.u), put(o, P.stress), put(o, P.strain), put(o, P.rotation);
+    for (const auto& c : m.cracks) put(o, c.points), put(o, c.above), put(o, c.below);
     if (!o) throw std::runtime_error(tmp + ": error while writing checkpoint");
   }
   std::filesystem::rename(tmp, file);
@@ -52,6 +53,10 @@ CheckpointInfo read_checkpoint(const std::filesystem::path& file, Model<Dim>& m)
   auto& P = m.particles;
   get(i, P.x, file), get(i, P.v, file), get(i, P.u, file), get(i, P.stress, file), get(i, P.strain, file);
   get(i, P.rotation, file);
+  for (auto& c : m.cracks) {
+    get(i, c.points, file), get(i, c.above, file), get(i, c.below, file);
+    c.update_extent();
+  }
   return info;
 }
 

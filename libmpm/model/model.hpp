@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "libmpm/crack/crack2d.hpp"
 #include "libmpm/material/material.hpp"
 #include "libmpm/model/grid.hpp"
 #include "libmpm/model/loads.hpp"
@@ -46,6 +47,7 @@ struct Model {
   std::vector<std::unique_ptr<Material<Dim>>> materials;
   std::vector<Body> bodies;
   Particles<Dim> particles;
+  std::vector<crack::Crack2D> cracks;  // 2D explicit cracks (empty in 3D and in uncracked scenes)
   std::vector<TractionLoad<Dim>> tractions;
   Vec<Dim> gravity = Vec<Dim>::Zero();
   GridConditions<Dim> conditions;

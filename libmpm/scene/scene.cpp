@@ -69,6 +69,36 @@ struct BodyLattice {
 
 }  // namespace
 
+// Checks that need the model: every crack point inside the grid (with room for its nodes), and
+// every crack touching a body (some particle within one cell of a segment).
+static void check_cracks(const Model<2>& m) {
+  const double h = m.grid.h;
+  const Vec<2> lo = m.grid.origin, hi = m.grid.upper();
+  for (const auto& c : m.cracks) {
+    const std::string path = "cracks[" + std::to_string(c.id) + "]";
+    for (std::size_t i = 0; i < c.points.size(); ++i) {
+      const Vec<2>& x = c.points[i];
+      if (!((x.array() > lo.array() + h).all() && (x.array() < hi.array() - h).all()))
+        throw SceneError(path, "crack '" + c.name + "': point " + std::to_string(i) + " (" + std::to_string(x.x()) +
+                                   ", " + std::to_string(x.y()) +
+                                   ") m lies outside the grid or within one cell of its edge; enlarge the grid");
+    }
+    bool touches = false;
+    const Vec<2> clo = c.lo.array() - h, chi = c.hi.array() + h;
+    for (std::size_t p = 0; p < m.particles.size() && !touches; ++p) {
+      const Vec<2>& x = m.particles.x[p];
+      if ((x.array() < clo.array()).any() || (x.array() > chi.array()).any()) continue;
+      for (std::size_t s = 0; s + 1 < c.points.size() && !touches; ++s) {
+        const Vec<2> a = c.points[s], d = c.points[s + 1] - a;
+        const double t = std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+        touches = (x - (a + t * d)).norm() <= h;
+      }
+    }
+    if (!touches)
+      throw SceneError(path, "crack '" + c.name + "' lies outside every body (no particle within one cell of it)");
+  }
+}
+
 json load_scene_file(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw SceneError(file.string(), "cannot open the scene file");
@@ -88,7 +118,7 @@ int scene_dimension(const json& scene) {
 template <int Dim>
 Model<Dim> build_model(const json& scene) {
   ObjectReader top(scene, "", {"title", "description", "units", "analysis", "grid", "mpm", "materials",
-                               "bodies", "loads", "damping", "time", "output", "checks"});
+                               "bodies", "loads", "cracks", "damping", "time", "output", "checks"});
   register_builtin_materials();
   Model<Dim> m;
   const UnitSystem units = UnitSystem::from_json(scene.value("units", json()), "units");
@@ -140,7 +170,9 @@ Model<Dim> build_model(const json& scene) {
   geom::Box<Dim> all;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const std::string path = index_path("bodies", i);
-    ObjectReader r(bodies[i], path, {"name", "material", "shape", "particles_per_cell", "velocity", "thickness"});
+    ObjectReader r(bodies[i], path,
+                   {"name", "material", "shape", "particles_per_cell", "velocity", "angular_velocity", "rotation_center",
+                    "thickness"});
     if (!r.has("shape")) throw SceneError(r.at("shape"), "missing");
     shapes.push_back(geom::parse_shape<Dim>(bodies[i]["shape"], r.at("shape"), L));
     const auto b = shapes.back()->bounds();
@@ -191,7 +223,9 @@ Model<Dim> build_model(const json& scene) {
   const int K = m.shape_function == ShapeFunctionKind::UGimp ? 3 : 2;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const std::string path = index_path("bodies", i);
-    ObjectReader r(bodies[i], path, {"name", "material", "shape", "particles_per_cell", "velocity", "thickness"});
+    ObjectReader r(bodies[i], path,
+                   {"name", "material", "shape", "particles_per_cell", "velocity", "angular_velocity", "rotation_center",
+                    "thickness"});
     Body b;
     b.name = r.string_or("name", "body" + std::to_string(i));
     const std::string mat = r.string("material");
@@ -253,9 +287,35 @@ Model<Dim> build_model(const json& scene) {
     b.count = P.size() - b.first;
     if (b.count == 0)
       throw SceneError(r.at("shape"), "body '" + b.name + "' holds no particle centre at this cell size");
+    if (r.has("angular_velocity")) {
+      // Rigid rotation about the body's centroid: v = v0 + w x (x - c).
+      if constexpr (Dim == 3) {
+        throw SceneError(r.at("angular_velocity"), "only for 2D bodies (a rotation rate about z)");
+      } else {
+        const double w = r.number("angular_velocity", units.factor(Quantity::InverseTime));
+        Vec<Dim> c = Vec<Dim>::Zero();
+        if (r.has("rotation_center")) {
+          c = r.vec<Dim>("rotation_center", L);
+        } else {
+          for (std::size_t p = b.first; p < P.size(); ++p) c += P.x[p];
+          c /= static_cast<double>(b.count);
+        }
+        for (std::size_t p = b.first; p < P.size(); ++p) P.v[p] += w * Vec<2>(-(P.x[p].y() - c.y()), P.x[p].x() - c.x());
+      }
+    }
     for (const auto& other : m.bodies)
       if (other.name == b.name) throw SceneError(r.at("name"), "duplicate body name '" + b.name + "'");
     m.bodies.push_back(b);
+  }
+
+  // --- cracks (2D, seed 002) --------------------------------------------------------------------
+  if (top.has("cracks")) {
+    if constexpr (Dim == 3) {
+      throw SceneError("cracks", "3D crack surfaces are not supported yet (cracks are 2D polylines)");
+    } else {
+      m.cracks = crack::parse_cracks(scene["cracks"], "cracks", L);
+      check_cracks(m);
+    }
   }
 
   // --- loads ------------------------------------------------------------------------------------

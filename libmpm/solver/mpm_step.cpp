@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "libmpm/material/linear_elastic.hpp"
+#include "libmpm/solver/crack_fields.hpp"
 #include "libmpm/solver/parallel.hpp"
 #include "libmpm/solver/stencil.hpp"
 
@@ -23,12 +24,26 @@ class MpmStepper final : public Stepper<Dim> {
     stride_ = G_.strides();
     inv_h_ = 1.0 / G_.h;
     grid_.resize(G_.node_count());
-    kin_.assign(G_.node_count(), NodeKinematics{Vec<Dim>::Zero(), Vec<Dim>::Zero()});
+    kin_.assign(G_.node_count(), NodeKinematics<Dim>{Vec<Dim>::Zero(), Vec<Dim>::Zero()});
     dx_.assign(P_.size(), Vec<Dim>::Zero());
     traits_ = traits(m.scheme);
     all_linear_elastic_ = true;
     for (const auto& mat : m.materials)
       all_linear_elastic_ = all_linear_elastic_ && dynamic_cast<const LinearElastic<Dim>*>(mat.get()) != nullptr;
+    if constexpr (Dim == 2)
+      if (!m.cracks.empty()) cf_ = std::make_unique<CrackFields<SF>>(m, grid_, kin_);
+  }
+
+  std::string take_warning() override {
+    if constexpr (Dim == 2) {
+      if (!cf_) return {};
+      const long o = cf_->take_overflow();
+      if (o > 0)
+        return "step " + std::to_string(step_) + ": " + std::to_string(o) +
+               " particle-node pair(s) needed a fifth velocity field at a node (more than two cracks meet there, or "
+               "one line crosses three cracks); they used the node's ordinary field";
+    }
+    return {};
   }
 
   double time() const override { return time_; }
@@ -49,12 +64,22 @@ class MpmStepper final : public Stepper<Dim> {
       flush_denormals_on_all_threads();
       ftz_threads_ = omp_get_max_threads();
     }
-    order_.build(P_, G_, inv_h_);
+    const uint8_t* skip = nullptr;
+    bool skip_changed = false;
+    if constexpr (Dim == 2)
+      if (cf_) {
+        cf_->prepare();  // Task 1, line crossing: fields of the particles near cracks
+        skip = cf_->near_flags();
+        skip_changed = cf_->near_set_changed();
+      }
+    skip_ = skip;
+    order_.build(P_, G_, inv_h_, skip, skip_changed);
     const double traction_power_before = traction_power();
     const double dts = dt * traits_.fraction;
 
     task1_extrapolate();
     apply_momentum_conditions();  // Task 2
+    crack_contact();
     if (traits_.update_before_forces) {  // Tasks 2-3: USF and USAVG update stresses first
       nodal_velocities();
       stress_pass<true, true, false>(dts);
@@ -67,9 +92,12 @@ class MpmStepper final : public Stepper<Dim> {
     StepProblem problem = task5_update_particles(dt, traits_.reextrapolate, /*move=*/!late_update);
     if (traits_.reextrapolate) {  // Task 6c
       apply_momentum_conditions();
+      crack_contact();
       nodal_velocities();
     }
     if (late_update) stress_pass<true, false, true>(dts);  // Task 6a / 6c
+    if constexpr (Dim == 2)
+      if (cf_) cf_->move_cracks(dt);  // Task 7
 
     external_work_ += 0.5 * dt * (traction_power_before + traction_power());
     time_ += dt;
@@ -107,6 +135,21 @@ class MpmStepper final : public Stepper<Dim> {
         grid_.momentum[n] += mv * w;
       });
     });
+    if constexpr (Dim == 2)
+      if (cf_) {
+        const auto& near = cf_->near_list();
+        for (std::size_t k = 0; k < near.size(); ++k) {
+          St s;
+          s.eval(G_, stride_, inv_h_, P_.x[near[k]], P_.half_width[near[k]]);
+          cf_->extrapolate(k, s);
+        }
+      }
+  }
+
+  // Contact at multi-field nodes whenever momenta were (re)computed (Tasks 2 and 6c).
+  void crack_contact() {
+    if constexpr (Dim == 2)
+      if (cf_) cf_->contact(m_.dt);
   }
 
   // Updating stresses and strains (Subtasks 2-3: velocity gradient eq. 36 from the nodal velocities
@@ -142,9 +185,38 @@ class MpmStepper final : public Stepper<Dim> {
       order_.scatter(body);
     } else {
       const std::size_t np = P_.size();
+      const uint8_t* skip = skip_;
 #pragma omp parallel for schedule(static) if (worth_parallel(np))
-      for (std::size_t p = 0; p < np; ++p) body(p);
+      for (std::size_t p = 0; p < np; ++p)
+        if (!skip || !skip[p]) body(p);
     }
+    if constexpr (Dim == 2)
+      if (cf_) {  // particles near cracks: the same with each pair's velocity field
+        const auto& near = cf_->near_list();
+        for (std::size_t k = 0; k < near.size(); ++k) {
+          const std::size_t p = static_cast<std::size_t>(near[k]);
+          St s;
+          s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
+          if constexpr (update) {
+            Mat<Dim> L = Mat<Dim>::Zero();
+            cf_->for_each_pair(k, s, [&](int64_t n, int32_t x, double, const Vec<Dim>& g) {
+              L.noalias() += cf_->kin(n, x).v * g.transpose();
+            });
+            P_.rotation[p] += 0.5 * (L(1, 0) - L(0, 1)) * dts;
+            m_.materials[P_.material[p]]->update(P_.stress[p], P_.strain[p], L, dts);
+          }
+          if constexpr (scatter_force) {
+            const Sym<Dim> vs = P_.volume0[p] * P_.stress[p];
+            cf_->for_each_pair(k, s, [&](int64_t n, int32_t x, double, const Vec<Dim>& g) {
+              cf_->force(n, x) -= sym_dot<Dim>(vs, g);
+            });
+          }
+          if constexpr (move) {
+            P_.x[p] += dx_[p];
+            P_.u[p] += dx_[p];
+          }
+        }
+      }
   }
 
   // Task 3, grid part: tractions, body force, damping; zero force on prescribed components.
@@ -156,6 +228,13 @@ class MpmStepper final : public Stepper<Dim> {
         St s;
         s.eval(G_, stride_, inv_h_, face_centre(t, p), face_half_widths(t, p).data());
         const Vec<Dim> F = tr * t.face_area[j];
+        if constexpr (Dim == 2)
+          if (cf_ && skip_[p]) {  // near a crack: each node's field as seen from the particle
+            s.for_each_weight([&](int64_t n, double w) {
+              cf_->force(n, cf_->field_of(p, n, node_position(n))) += F * w;
+            });
+            continue;
+          }
         s.for_each_weight([&](int64_t n, double w) { grid_.force[n] += F * w; });
       }
     }
@@ -168,6 +247,8 @@ class MpmStepper final : public Stepper<Dim> {
         if (grid_.mass[n] <= 0.0) continue;
         grid_.force[n] += grid_.mass[n] * m_.gravity - kappa * grid_.momentum[n];
       }
+      if constexpr (Dim == 2)
+        if (cf_) cf_->body_force_and_damping(m_.gravity, kappa);
     }
     const auto& C = m_.conditions;
     for (std::size_t c = 0; c < C.node.size(); ++c)
@@ -177,6 +258,8 @@ class MpmStepper final : public Stepper<Dim> {
           external_work_ -= grid_.force[C.node[c]][d] * C.velocity[c][d] * m_.dt;
           grid_.force[C.node[c]][d] = 0.0;
         }
+    if constexpr (Dim == 2)
+      if (cf_) external_work_ -= cf_->zero_prescribed_forces(C) * m_.dt;
   }
 
   // Task 4: p' = p + dt f (eq. 29), and the nodal velocity and acceleration Task 5 gathers.
@@ -190,6 +273,8 @@ class MpmStepper final : public Stepper<Dim> {
       kin_[n].v = grid_.momentum[n] * inv_m;
       kin_[n].a = grid_.force[n] * inv_m;
     }
+    if constexpr (Dim == 2)
+      if (cf_) cf_->update_momenta(dt);  // with contact and back-computed forces
   }
 
   // Task 5 (eq. 30): particle velocities, and position increments that are applied now or, when a
@@ -197,6 +282,20 @@ class MpmStepper final : public Stepper<Dim> {
   // reextrapolate, the new particle momenta go straight back to the grid (Task 6c, eq. 31).
   StepProblem task5_update_particles(double dt, bool reextrapolate, bool move) {
     std::atomic<long> bad{std::numeric_limits<long>::max()};
+    // The lowest-numbered bad particle is reported, whatever the thread count.
+    auto finish = [&](std::size_t p, const Vec<Dim>& dx) {
+      if (!P_.v[p].allFinite() || !stencil_inside<Dim, SF>(G_, inv_h_, P_.x[p] + dx)) {
+        long cur = bad.load();
+        while (static_cast<long>(p) < cur && !bad.compare_exchange_weak(cur, static_cast<long>(p))) {
+        }
+      }
+      if (move) {
+        P_.x[p] += dx;
+        P_.u[p] += dx;
+      } else {
+        dx_[p] = dx;
+      }
+    };
     auto body = [&](std::size_t p) {
       St s;
       s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
@@ -211,26 +310,41 @@ class MpmStepper final : public Stepper<Dim> {
         const Vec<Dim> mv = P_.mass[p] * P_.v[p];
         s.for_each_weight([&](int64_t n, double w) { grid_.momentum[n] += mv * w; });
       }
-      if (!P_.v[p].allFinite() || !stencil_inside<Dim, SF>(G_, inv_h_, P_.x[p] + dx)) {
-        long cur = bad.load();
-        while (static_cast<long>(p) < cur && !bad.compare_exchange_weak(cur, static_cast<long>(p))) {
-        }
-      }
-      if (move) {
-        P_.x[p] += dx;
-        P_.u[p] += dx;
-      } else {
-        dx_[p] = dx;
-      }
+      finish(p, dx);
     };
     if (reextrapolate) {
       std::fill(grid_.momentum.begin(), grid_.momentum.end(), Vec<Dim>::Zero());
       order_.scatter(body);
     } else {
       const std::size_t np = P_.size();
+      const uint8_t* skip = skip_;
 #pragma omp parallel for schedule(static) if (worth_parallel(np))
-      for (std::size_t p = 0; p < np; ++p) body(p);
+      for (std::size_t p = 0; p < np; ++p)
+        if (!skip || !skip[p]) body(p);
     }
+    if constexpr (Dim == 2)
+      if (cf_) {
+        if (reextrapolate) cf_->clear_momenta();
+        const auto& near = cf_->near_list();
+        for (std::size_t k = 0; k < near.size(); ++k) {
+          const std::size_t p = static_cast<std::size_t>(near[k]);
+          St s;
+          s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
+          Vec<Dim> a = Vec<Dim>::Zero(), v = Vec<Dim>::Zero();
+          cf_->for_each_pair_weight(k, s, [&](int64_t n, int32_t x, double w) {
+            const auto& kn = cf_->kin(n, x);
+            a += kn.a * w;
+            v += kn.v * w;
+          });
+          P_.v[p] += dt * a;
+          const Vec<Dim> dx = dt * v;
+          if (reextrapolate) {
+            const Vec<Dim> mv = P_.mass[p] * P_.v[p];
+            cf_->for_each_pair_weight(k, s, [&](int64_t n, int32_t x, double w) { cf_->momentum(n, x) += mv * w; });
+          }
+          finish(p, dx);
+        }
+      }
     const long b = bad.load();
     if (b == std::numeric_limits<long>::max()) return {};
     return {b, P_.v[b].allFinite() ? "left the grid" : "velocity is not finite (NaN/Inf)"};
@@ -241,6 +355,8 @@ class MpmStepper final : public Stepper<Dim> {
     for (std::size_t c = 0; c < C.node.size(); ++c)
       for (int d = 0; d < Dim; ++d)
         if (C.mask[c] & (1u << d)) grid_.momentum[C.node[c]][d] = grid_.mass[C.node[c]] * C.velocity[c][d];
+    if constexpr (Dim == 2)
+      if (cf_) cf_->apply_momentum_conditions(C);
   }
 
   // Subtask 1: nodal velocities from the latest momenta (eq. 34).
@@ -249,6 +365,14 @@ class MpmStepper final : public Stepper<Dim> {
 #pragma omp parallel for schedule(static) if (worth_parallel(nn))
     for (std::size_t n = 0; n < nn; ++n)
       if (grid_.mass[n] > 0.0) kin_[n].v = grid_.momentum[n] / grid_.mass[n];
+    if constexpr (Dim == 2)
+      if (cf_) cf_->nodal_velocities();
+  }
+
+  Vec<Dim> node_position(int64_t n) const {
+    std::array<int, Dim> ijk;
+    for (int d = 0; d < Dim; ++d) ijk[d] = static_cast<int>((n / int64_t(stride_[d])) % G_.nodes[d]);
+    return G_.position(ijk);
   }
 
   Vec<Dim> face_centre(const TractionLoad<Dim>& t, int32_t p) const {
@@ -279,11 +403,10 @@ class MpmStepper final : public Stepper<Dim> {
   std::array<std::size_t, Dim> stride_;
   double inv_h_;
   GridFields<Dim> grid_;
-  // Nodal velocity and acceleration side by side: Task 5 gathers both from one cache line.
-  struct NodeKinematics {
-    Vec<Dim> v, a;
-  };
-  std::vector<NodeKinematics> kin_;
+  std::vector<NodeKinematics<Dim>> kin_;
+  // 2D explicit cracks: extra velocity fields, contact, crack motion (null without cracks).
+  std::unique_ptr<CrackFields<SF>> cf_;
+  const uint8_t* skip_ = nullptr;  // near-crack flags: those particles take the crack paths
   std::vector<Vec<Dim>> dx_;
   StripOrder<Dim> order_;
   SchemeTraits traits_;

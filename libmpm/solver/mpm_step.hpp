@@ -36,6 +36,9 @@ class Stepper {
   virtual double time() const = 0;
   virtual double external_work() const = 0;
   virtual long step_count() const = 0;
+  // A message for the log (empty when there is none), e.g. a node that needed more velocity
+  // fields than it holds.
+  virtual std::string take_warning() { return {}; }
   // Restores counters when resuming from a checkpoint.
   virtual void restore(double time, long step, double external_work) = 0;
 };

@@ -58,11 +58,14 @@ class StripOrder {
  public:
   static constexpr int kWidth = 4;
 
-  void build(const Particles<Dim>& P, const GridGeometry<Dim>& G, double inv_h) {
+  // skip (optional, one flag per particle): particles left out of the order (the crack module
+  // handles particles near cracks itself); pass skip_changed = true when the flags changed.
+  void build(const Particles<Dim>& P, const GridGeometry<Dim>& G, double inv_h, const uint8_t* skip = nullptr,
+             bool skip_changed = false) {
     const int strips = (G.nodes[0] + kWidth - 1) / kWidth;
     const std::size_t np = P.size();
     // Particles rarely change strip from one step to the next: re-sort only when one did.
-    bool changed = strip_of_.size() != np || begin_.size() != static_cast<std::size_t>(strips + 1);
+    bool changed = skip_changed || strip_of_.size() != np || begin_.size() != static_cast<std::size_t>(strips + 1);
     strip_of_.resize(np);
 #pragma omp parallel for schedule(static) if (worth_parallel(np)) reduction(|| : changed)
     for (std::size_t p = 0; p < np; ++p) {
@@ -74,11 +77,13 @@ class StripOrder {
     parallel_ = worth_parallel(np);
     if (!changed) return;
     begin_.assign(strips + 1, 0);
-    for (std::size_t p = 0; p < np; ++p) ++begin_[strip_of_[p] + 1];
+    for (std::size_t p = 0; p < np; ++p)
+      if (!skip || !skip[p]) ++begin_[strip_of_[p] + 1];
     for (int s = 0; s < strips; ++s) begin_[s + 1] += begin_[s];
-    order_.resize(np);
+    order_.resize(begin_[strips]);
     std::vector<std::size_t> fill(begin_.begin(), begin_.end() - 1);
-    for (std::size_t p = 0; p < np; ++p) order_[fill[strip_of_[p]]++] = static_cast<int32_t>(p);
+    for (std::size_t p = 0; p < np; ++p)
+      if (!skip || !skip[p]) order_[fill[strip_of_[p]]++] = static_cast<int32_t>(p);
   }
 
   // Calls body(p) for every particle; writes made by body to nodes never race.

@@ -7,6 +7,7 @@
 
 #include "libmpm/core/error.hpp"
 #include "libmpm/io/checkpoint.hpp"
+#include "libmpm/io/crack_output.hpp"
 #include "libmpm/io/csv_writer.hpp"
 #include "libmpm/io/particle_fields.hpp"
 #include "libmpm/io/pvd_writer.hpp"
@@ -32,9 +33,9 @@ void write_status(const fs::path& out, const std::string& status, const std::str
   fs::rename(tmp, out / "run.json");
 }
 
-std::string frame_name(int k) {
+std::string frame_name(const char* series, int k) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, "particles_%06d.vtu", k);
+  std::snprintf(buf, sizeof buf, "%s_%06d.vtu", series, k);
   return buf;
 }
 
@@ -67,6 +68,8 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
 
   io::CheckpointInfo ck;
   io::PvdIndex pvd(out / "particles.pvd");
+  const bool cracks = !m.cracks.empty();
+  io::PvdIndex crack_pvd(out / "cracks.pvd");
   const fs::path csv_path = out / "global.csv";
   const fs::path ck_path = out / "checkpoint.bin";
   if (opt.resume) {
@@ -76,13 +79,17 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
     stepper->restore(ck.time, ck.step, ck.external_work);
     pvd = io::PvdIndex::load(out / "particles.pvd");
     pvd.truncate_after(ck.time);
+    if (cracks) {
+      crack_pvd = io::PvdIndex::load(out / "cracks.pvd");
+      crack_pvd.truncate_after(ck.time);
+    }
     io::CsvSeries::truncate_after(csv_path, ck.time);
   } else {
     // A fresh run replaces the outputs of an earlier one in the same directory.
     for (const auto& e : fs::directory_iterator(out)) {
       const std::string n = e.path().filename().string();
-      if ((n.rfind("particles_", 0) == 0 && e.path().extension() == ".vtu") || n == "particles.pvd" ||
-          n == "global.csv" || n == "checkpoint.bin" || n == "run.json")
+      if (((n.rfind("particles_", 0) == 0 || n.rfind("cracks_", 0) == 0) && e.path().extension() == ".vtu") ||
+          n == "particles.pvd" || n == "cracks.pvd" || n == "global.csv" || n == "checkpoint.bin" || n == "run.json")
         fs::remove(e.path());
     }
   }
@@ -94,10 +101,16 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
   RunSummary sum;
   double e0 = -1.0, emax = 0.0;
   auto write_frame = [&]() {
-    const std::string name = frame_name(ck.next_frame);
+    const std::string name = frame_name("particles", ck.next_frame);
     io::write_vtu(out / name, io::particle_point_set<Dim>(m, m.output.fields));
     pvd.add(stepper->time(), name);
     pvd.write();
+    if (cracks) {
+      const std::string cname = frame_name("cracks", ck.next_frame);
+      io::write_vtu(out / cname, io::crack_point_set(m.cracks));
+      crack_pvd.add(stepper->time(), cname);
+      crack_pvd.write();
+    }
     ++ck.next_frame;
     ++sum.frames;
   };
@@ -135,6 +148,8 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
   while (stepper->time() < m.end_time - eps) {
     const StepProblem problem = stepper->step();
     const double t = stepper->time();
+    if (opt.log)
+      if (const std::string w = stepper->take_warning(); !w.empty()) opt.log(w);
     if (problem) {
       const auto& x = m.particles.x[problem.particle];
       std::ostringstream msg;

@@ -22,6 +22,7 @@ struct RunOptions {
   std::filesystem::path out;
   bool resume = false;
   std::function<void(const RunProgress&)> progress;  // called about every progress_interval_s
+  std::function<void(const std::string&)> log;       // warnings found while stepping
   double progress_interval_s = 0.5;
   uint64_t scene_hash = 0;
 };

@@ -1,0 +1,21 @@
+// Crack frames (OUT/cracks_NNNNNN.vtu, indexed by OUT/cracks.pvd): one polyline cell per crack
+// through its crack particles, with point data
+//   above, below      positions of the crack surfaces above and below (m, 3 components)
+//   cod               crack opening displacement above - below (m, 3 components)
+//   cod_normal        its component along the left normal of the crack (opening > 0, overlap < 0)
+//   cod_tangential    its component along the crack direction (sliding)
+//   crack             crack id (index in the scene's "cracks" array)
+#pragma once
+#include <vector>
+
+#include "libmpm/crack/crack2d.hpp"
+#include "libmpm/io/point_set.hpp"
+
+namespace cleave::io {
+
+PointSet crack_point_set(const std::vector<crack::Crack2D>& cracks);
+
+// Normal and tangential opening at point i of crack c (the quantities written above).
+Vec<2> crack_opening(const crack::Crack2D& c, std::size_t i);
+
+}  // namespace cleave::io

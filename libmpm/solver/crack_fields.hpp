@@ -1,0 +1,622 @@
+// Multiple velocity fields at nodes near 2D explicit cracks (seed 002, §2.1-2.2 and Appendix A),
+// with crack contact and crack translation (Task 7).
+//
+// Every particle-node pair has a field key: the cracks its connecting line crosses and the side
+// the particle is on (at most two crossings, so two cracks may meet at a node). Key 0 (no
+// crossing) is the node's ordinary field and lives in the stepper's grid arrays; a node that also
+// receives another key gets a block of up to three extra slots, so a node holds up to four fields
+// as in NairnMPM. A pair that would need a fifth field is counted and reported, and its particle
+// then uses the node's ordinary field.
+//
+// Cost model: a per-step spatial index maps each cell to the crack segments within 4 cells of it.
+// Particles in cells with no entry ("far" particles) can neither cross a crack nor touch a
+// multi-field node, so they keep the stepper's single-field fast path; only "near" particles take
+// the paths here.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "libmpm/crack/crack2d.hpp"
+#include "libmpm/model/model.hpp"
+#include "libmpm/solver/stencil.hpp"
+
+namespace cleave {
+
+// Nodal velocity and acceleration side by side: Task 5 gathers both from one cache line.
+template <int Dim>
+struct NodeKinematics {
+  Vec<Dim> v, a;
+};
+
+template <class SF>
+class CrackFields {
+  static constexpr int Dim = 2;
+  using St = Stencil<2, SF>;
+  using V = Vec<2>;
+
+ public:
+  static constexpr int N = St::N;
+  static constexpr int kExtra = 3;  // extra fields per node: four in all
+  // Cells: a particle reaches nodes up to 1 cell away (linear) or 1.5 cells (uGIMP, half-width
+  // <= 0.5 cell), so a particle sharing a node with a pair whose line crosses a segment is within
+  // twice that of the segment.
+  static constexpr int kReach = SF::K == 2 ? 2 : 3;
+
+  CrackFields(Model<2>& m, GridFields<2>& grid, std::vector<NodeKinematics<2>>& kin)
+      : m_(m), P_(m.particles), G_(m.grid), grid_(grid), kin_(kin), cracks_(m.cracks) {
+    stride_ = G_.strides();
+    inv_h_ = 1.0 / G_.h;
+    cells_[0] = G_.nodes[0] - 1;
+    cells_[1] = G_.nodes[1] - 1;
+    cell_head_.assign(static_cast<std::size_t>(cells_[0]) * cells_[1], -1);
+    node_block_.assign(G_.node_count(), -1);
+    near_flag_.assign(P_.size(), 0);
+    area0_.resize(P_.size());
+    for (const auto& b : m.bodies)
+      for (std::size_t p = b.first; p < b.first + b.count; ++p) area0_[p] = P_.volume0[p] / b.thickness;
+  }
+
+  bool active() const { return !cracks_.empty(); }
+  const uint8_t* near_flags() const { return near_flag_.data(); }
+  const std::vector<int32_t>& near_list() const { return near_; }
+  // True when the set of near particles changed in the last prepare() (the stepper's strip order
+  // of far particles must then be rebuilt).
+  bool near_set_changed() const { return near_changed_; }
+  std::size_t block_count() const { return block_node_.size(); }
+
+  // --- Task 1 preamble: spatial index, near particles, line crossing (Appendix A), field slots ----
+  void prepare() {
+    for (auto& c : cracks_) c.update_extent();
+    build_index();
+    find_near_particles();
+    classify_pairs();
+    allocate_fields();
+  }
+
+  // Calls f(node, x, w, g) for every stencil node of near particle k (index into near_list()):
+  // x < 0 means the node's ordinary field (the stepper's arrays), else the extra slot index.
+  template <class F>
+  void for_each_pair(std::size_t k, const St& s, F&& f) const {
+    const uint8_t* sl = &pair_slot_[k * N];
+    int j = 0;
+    s.for_each([&](int64_t n, double w, const V& g) {
+      const uint8_t q = sl[j++];
+      f(n, q ? static_cast<int32_t>(node_block_[n] * kExtra + q - 1) : -1, w, g);
+    });
+  }
+  template <class F>
+  void for_each_pair_weight(std::size_t k, const St& s, F&& f) const {
+    const uint8_t* sl = &pair_slot_[k * N];
+    int j = 0;
+    s.for_each_weight([&](int64_t n, double w) {
+      const uint8_t q = sl[j++];
+      f(n, q ? static_cast<int32_t>(node_block_[n] * kExtra + q - 1) : -1, w);
+    });
+  }
+
+  // Task 1 for near particle k: masses and momenta per field (eq. 26), total nodal volume (eq. 27)
+  // and, for displacement contact, mass-weighted displacements per field (seed 000 eq. 68).
+  void extrapolate(std::size_t k, const St& s) {
+    const std::size_t p = static_cast<std::size_t>(near_[k]);
+    const double mp = P_.mass[p];
+    const V mv = mp * P_.v[p], mu = mp * P_.u[p];
+    const auto& e = P_.strain[p];
+    const double area = area0_[p] * (1.0 + e[0]) * (1.0 + e[1]);  // eq. 25
+    for_each_pair_weight(k, s, [&](int64_t n, int32_t x, double w) {
+      const int32_t b = node_block_[n];
+      if (x < 0) {
+        grid_.mass[n] += mp * w;
+        grid_.momentum[n] += mv * w;
+        if (b >= 0) disp0_[b] += mu * w;
+      } else {
+        mass_[x] += mp * w;
+        momentum_[x] += mv * w;
+        disp_[x] += mu * w;
+      }
+      if (b >= 0) volume_[b] += area * w;
+    });
+  }
+
+  double& mass(int64_t n, int32_t x) { return x < 0 ? grid_.mass[n] : mass_[x]; }
+  V& momentum(int64_t n, int32_t x) { return x < 0 ? grid_.momentum[n] : momentum_[x]; }
+  V& force(int64_t n, int32_t x) { return x < 0 ? grid_.force[n] : force_[x]; }
+  const NodeKinematics<2>& kin(int64_t n, int32_t x) const { return x < 0 ? kin_[n] : xkin_[x]; }
+
+  // Field slot (as in for_each_pair) for the pair particle p - node n, classified afresh: for loads
+  // whose stencil is not the particle's own (face tractions). Falls back to the ordinary field when
+  // the node has no field with this key.
+  int32_t field_of(std::size_t p, int64_t n, const V& node_pos) const {
+    if (!near_flag_[p]) return -1;
+    int32_t seg[2];
+    const uint32_t key = classify(P_.x[p], node_pos, seg);
+    if (key == 0 || key == kOverflow) return -1;
+    const int32_t b = node_block_[n];
+    if (b < 0) return -1;
+    for (int s = 0; s < block_nslots_[b]; ++s)
+      if (block_key_[b * kExtra + s] == key) return b * kExtra + s;
+    return -1;
+  }
+
+  // Task 3, grid part, for the extra fields: body force and damping (eq. 28).
+  void body_force_and_damping(const V& gravity, double kappa) {
+    for (std::size_t x = 0; x < mass_.size(); ++x)
+      if (mass_[x] > 0.0) force_[x] += mass_[x] * gravity - kappa * momentum_[x];
+  }
+
+  // Prescribed velocity components hold for every field at the node (Task 2 / Task 6c).
+  void apply_momentum_conditions(const GridConditions<2>& C) {
+    for (std::size_t c = 0; c < C.node.size(); ++c) {
+      const int32_t b = node_block_[C.node[c]];
+      if (b < 0) continue;
+      for (int s = 0; s < block_nslots_[b]; ++s)
+        for (int d = 0; d < 2; ++d)
+          if (C.mask[c] & (1u << d)) momentum_[b * kExtra + s][d] = mass_[b * kExtra + s] * C.velocity[c][d];
+    }
+  }
+  // Zero force on prescribed components for every field (Task 3); returns the reaction power of
+  // the extra fields, sum f . v_prescribed, for the external-work account.
+  double zero_prescribed_forces(const GridConditions<2>& C) {
+    double power = 0.0;
+    for (std::size_t c = 0; c < C.node.size(); ++c) {
+      const int32_t b = node_block_[C.node[c]];
+      if (b < 0) continue;
+      for (int s = 0; s < block_nslots_[b]; ++s)
+        for (int d = 0; d < 2; ++d)
+          if (C.mask[c] & (1u << d)) {
+            power += force_[b * kExtra + s][d] * C.velocity[c][d];
+            force_[b * kExtra + s][d] = 0.0;
+          }
+    }
+    return power;
+  }
+
+  // Task 4 for the extra fields (eq. 29), then contact with force back-calculation, then the
+  // velocities and accelerations of every field at multi-field nodes.
+  void update_momenta(double dt) {
+    for (std::size_t x = 0; x < mass_.size(); ++x)
+      if (mass_[x] > 0.0) momentum_[x] += dt * force_[x];
+    contact(dt, true);
+    for (std::size_t b = 0; b < block_node_.size(); ++b) {
+      const int64_t n = block_node_[b];
+      if (grid_.mass[n] > 0.0) {
+        kin_[n].v = grid_.momentum[n] / grid_.mass[n];
+        kin_[n].a = grid_.force[n] / grid_.mass[n];
+      }
+      for (int s = 0; s < block_nslots_[b]; ++s) {
+        const std::size_t x = b * kExtra + s;
+        if (mass_[x] > 0.0) {
+          xkin_[x].v = momentum_[x] / mass_[x];
+          xkin_[x].a = force_[x] / mass_[x];
+        }
+      }
+    }
+  }
+
+  // Task 6c starts the extra fields' momenta afresh (the ordinary field's are zeroed by the stepper).
+  void clear_momenta() { std::fill(momentum_.begin(), momentum_.end(), V::Zero()); }
+
+  // Nodal velocities of the extra fields from the latest momenta (Subtask 1, eq. 34).
+  void nodal_velocities() {
+    for (std::size_t x = 0; x < mass_.size(); ++x)
+      if (mass_[x] > 0.0) xkin_[x].v = momentum_[x] / mass_[x];
+  }
+
+  // Contact (seed 002 §2.2; seed 000 Appendix B) at every multi-field node, between each pair of
+  // fields whose keys differ in exactly one crack. With back_compute (Task 4) the momentum changes
+  // are also added to the forces as Δp/dt so that Task 5 moves the particles consistently.
+  void contact(double dt, bool back_compute = false) {
+    const double cell_volume = G_.h * G_.h;
+    for (std::size_t b = 0; b < block_node_.size(); ++b) {
+      const int64_t n = block_node_[b];
+      const int nf = 1 + block_nslots_[b];
+      for (int i = 0; i < nf; ++i)
+        for (int j = i + 1; j < nf; ++j) {
+          const int32_t xi = i == 0 ? -1 : static_cast<int32_t>(b * kExtra + i - 1);
+          const int32_t xj = static_cast<int32_t>(b * kExtra + j - 1);
+          const uint32_t ki = i == 0 ? 0u : block_key_[xi], kj = block_key_[xj];
+          int crack, rank_i, rank_j;
+          if (!differ_in_one_crack(ki, kj, crack, rank_i, rank_j)) continue;
+          const int32_t xa = rank_i > rank_j ? xi : xj, xb = rank_i > rank_j ? xj : xi;
+          const double ma = mass(n, xa), mb = mass(n, xb);
+          if (!(ma > 0.0 && mb > 0.0)) continue;
+          V nrm = normal_sum(xi, crack) + normal_sum(xj, crack);
+          const double len = nrm.norm();
+          if (!(len > 0.0)) continue;
+          nrm /= len;  // from above to below
+          const crack::Crack2D& c = cracks_[crack];
+          if (c.contact_law == "none") continue;
+          V& pa = momentum(n, xa);
+          V& pb = momentum(n, xb);
+          const V dv = pa / ma - pb / mb;
+          const double approach = dv.dot(nrm);  // > 0: the faces move towards each other
+          bool touching;
+          if (c.detection == crack::Crack2D::Detection::Volume) {
+            const double vrel = volume_[b] / cell_volume;  // eq. 10
+            touching = vrel > c.v_contact || (vrel >= c.v_sep && approach > 0.0);
+          } else {
+            // Seed 000 eqs. 69-70, with the displacements predicted to the end of the step
+            // (u + dt v): testing the start-of-step overlap alone lets the faces pass each other
+            // by up to one step's approach (dt |dv.n|) before contact acts.
+            const V ua = (xa < 0 ? disp0_[b] : disp_[xa]) / ma, ub = (xb < 0 ? disp0_[b] : disp_[xb]) / mb;
+            touching = approach > 0.0 && (ua - ub + dt * dv).dot(nrm) > 0.0;
+          }
+          if (!touching) continue;
+          // Stick: both fields take the centre-of-mass velocity (eq. 13).
+          const V stick = (ma * pb - mb * pa) / (ma + mb);
+          V dp;
+          if (c.contact_law == "stick") {
+            dp = stick;
+          } else {
+            const double dpn = stick.dot(nrm);
+            dp = dpn * nrm;
+            if (c.contact_law == "friction") {
+              // Coulomb: the tangential change needed to stick, capped at mu |normal change|
+              // (eqs. 14-18 in momentum form).
+              const V dpt = stick - dp;
+              const double t = dpt.norm(), cap = c.friction * std::fabs(dpn);
+              dp += t <= cap ? dpt : dpt * (cap / t);
+            }
+          }
+          pa += dp;
+          pb -= dp;
+          ++contacts_;
+          if (back_compute) {
+            force(n, xa) += dp / dt;
+            force(n, xb) -= dp / dt;
+          }
+        }
+    }
+  }
+
+  // Task 7 (eq. 32): crack particles move with the centre-of-mass nodal velocity; the surfaces
+  // above and below move with the velocity field of their side. Uses the end-of-step momenta.
+  void move_cracks(double dt) {
+    for (auto& c : cracks_) {
+      const std::size_t np = c.points.size();
+      std::vector<V> vm(np), va(np), vb(np);
+      for (std::size_t i = 0; i < np; ++i) {
+        const V nl = left_normal(c, i);
+        const V vcm = cm_velocity(c.points[i]);
+        vm[i] = vcm;
+        // The probes sit just off the crack line itself, not off the surfaces: a surface that has
+        // moved across the line (faces pressed together) must keep following its own side's field.
+        va[i] = side_velocity(c.above[i], c.points[i] + kProbe * G_.h * nl, vcm);
+        vb[i] = side_velocity(c.below[i], c.points[i] - kProbe * G_.h * nl, vcm);
+      }
+      for (std::size_t i = 0; i < np; ++i) {
+        c.points[i] += dt * vm[i];
+        c.above[i] += dt * va[i];
+        c.below[i] += dt * vb[i];
+      }
+      c.update_extent();
+    }
+  }
+
+  // Momentum of all fields at all multi-field nodes, extra slots only (for checks).
+  long contacts() const { return contacts_; }
+  // Pairs that needed a fifth field since the last call (reported by the stepper).
+  long take_overflow() {
+    const long o = overflow_;
+    overflow_ = 0;
+    return o;
+  }
+
+ private:
+  static constexpr double kProbe = 1e-3;  // cells: how far above/below a surface its probe sits
+  static constexpr uint32_t kOverflow = 0xffffffffu;  // a line crossing three or more cracks
+
+  struct Entry {
+    int32_t crack, seg_lo, seg_hi, next;
+  };
+
+  static V segment_normal(const crack::Crack2D& c, std::size_t s) {
+    const V t = c.points[s + 1] - c.points[s];
+    return V(t.y(), -t.x()) / t.norm();  // right of the crack direction: from above to below
+  }
+  static V left_normal(const crack::Crack2D& c, std::size_t i) {
+    V t = V::Zero();
+    if (i > 0) t += (c.points[i] - c.points[i - 1]).normalized();
+    if (i + 1 < c.points.size()) t += (c.points[i + 1] - c.points[i]).normalized();
+    const double l = t.norm();
+    return l > 0.0 ? V(-t.y() / l, t.x() / l) : V::Zero();
+  }
+
+  int64_t cell_of(const V& x) const {
+    const double fx = (x.x() - G_.origin.x()) * inv_h_, fy = (x.y() - G_.origin.y()) * inv_h_;
+    if (!(fx >= 0.0 && fy >= 0.0 && fx < cells_[0] && fy < cells_[1])) return -1;
+    return static_cast<int64_t>(fx) * cells_[1] + static_cast<int64_t>(fy);
+  }
+
+  // The spatial index: for each cell, per crack, the range of segments whose bounding box grown by
+  // kReach cells overlaps the cell. A contiguous range is exact for the crossing test: a segment
+  // outside it cannot reach the particle-node box, and the range's end vertices are either the
+  // crack's tips or vertices no particle-node line of this cell can touch.
+  void build_index() {
+    for (int64_t c : touched_) cell_head_[c] = -1;
+    touched_.clear();
+    entries_.clear();
+    const double grow = kReach * G_.h;
+    for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
+      const auto& pts = cracks_[ci].points;
+      for (std::size_t s = 0; s + 1 < pts.size(); ++s) {
+        const V lo = pts[s].cwiseMin(pts[s + 1]).array() - grow, hi = pts[s].cwiseMax(pts[s + 1]).array() + grow;
+        const int i0 = std::max(0, static_cast<int>(std::floor((lo.x() - G_.origin.x()) * inv_h_)));
+        const int i1 = std::min(cells_[0] - 1, static_cast<int>(std::floor((hi.x() - G_.origin.x()) * inv_h_)));
+        const int j0 = std::max(0, static_cast<int>(std::floor((lo.y() - G_.origin.y()) * inv_h_)));
+        const int j1 = std::min(cells_[1] - 1, static_cast<int>(std::floor((hi.y() - G_.origin.y()) * inv_h_)));
+        for (int i = i0; i <= i1; ++i)
+          for (int j = j0; j <= j1; ++j) {
+            const int64_t cell = static_cast<int64_t>(i) * cells_[1] + j;
+            int32_t e = cell_head_[cell];
+            while (e >= 0 && entries_[e].crack != static_cast<int32_t>(ci)) e = entries_[e].next;
+            if (e >= 0) {
+              entries_[e].seg_hi = static_cast<int32_t>(s);  // segments arrive in order
+            } else {
+              if (cell_head_[cell] < 0) touched_.push_back(cell);
+              entries_.push_back({static_cast<int32_t>(ci), static_cast<int32_t>(s), static_cast<int32_t>(s),
+                                  cell_head_[cell]});
+              cell_head_[cell] = static_cast<int32_t>(entries_.size() - 1);
+            }
+          }
+      }
+    }
+  }
+
+  void find_near_particles() {
+    prev_near_.swap(near_);
+    near_.clear();
+    const std::size_t np = P_.size();
+    for (std::size_t p = 0; p < np; ++p) {
+      const int64_t c = cell_of(P_.x[p]);
+      const uint8_t f = c >= 0 && cell_head_[c] >= 0;
+      near_flag_[p] = f;
+      if (f) near_.push_back(static_cast<int32_t>(p));
+    }
+    near_changed_ = near_ != prev_near_;
+  }
+
+  // Field key of the line particle xp -> node xn: one code per crossed crack,
+  // code = 2 crack + (below ? 1 : 0) + 1, two codes packed in ascending order (low 16 bits first).
+  // seg receives the crossed segment of each code (same order). Key 0: no crossing.
+  uint32_t classify(const V& xp, const V& xn, int32_t seg[2]) const {
+    const int64_t cell = cell_of(xp);
+    if (cell < 0) return 0;
+    uint32_t code[2] = {0, 0};
+    int count = 0;
+    for (int32_t e = cell_head_[cell]; e >= 0; e = entries_[e].next) {
+      const Entry& en = entries_[e];
+      const crack::Crack2D& c = cracks_[en.crack];
+      if (!crack::extent_overlaps(c, xp, xn)) continue;  // Subtask 1
+      std::size_t s = 0;
+      const crack::Side side =
+          crack::polyline_crossing(c.points.data() + en.seg_lo, static_cast<std::size_t>(en.seg_hi - en.seg_lo + 2),
+                                   xp, xn, &s);
+      if (side == crack::Side::None) continue;
+      if (count == 2) return kOverflow;
+      code[count] = static_cast<uint32_t>(2 * en.crack + (side == crack::Side::Below ? 1 : 0) + 1);
+      seg[count] = en.seg_lo + static_cast<int32_t>(s);
+      ++count;
+    }
+    if (count == 2 && code[1] < code[0]) {
+      std::swap(code[0], code[1]);
+      std::swap(seg[0], seg[1]);
+    }
+    return code[0] | (code[1] << 16);
+  }
+
+  void classify_pairs() {
+    const std::size_t nn = near_.size();
+    pair_key_.resize(nn * N);
+    pair_seg_.resize(nn * N * 2);
+#pragma omp parallel for schedule(static) if (nn >= 512)
+    for (std::size_t k = 0; k < nn; ++k) {
+      const std::size_t p = static_cast<std::size_t>(near_[k]);
+      St s;
+      s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
+      int j = 0;
+      s.for_each_weight([&](int64_t n, double w) {
+        const std::size_t q = k * N + j++;
+        pair_key_[q] = 0;
+        if (w == 0.0) return;  // no contribution: no field needed
+        pair_key_[q] = classify(P_.x[p], node_position(n), &pair_seg_[2 * q]);
+      });
+    }
+  }
+
+  V node_position(int64_t n) const {
+    const int64_t i = n / stride_[0], j = n % stride_[0];
+    return V(G_.origin.x() + G_.h * i, G_.origin.y() + G_.h * j);
+  }
+
+  // Serial, in particle order: deterministic slot numbering for any thread count.
+  void allocate_fields() {
+    for (int64_t n : block_node_) node_block_[n] = -1;
+    block_node_.clear();
+    block_nslots_.clear();
+    block_key_.clear();
+    std::vector<V> normals;  // per slot, two (one per code of the key)
+    const std::size_t nn = near_.size();
+    pair_slot_.assign(nn * N, 0);
+    for (std::size_t k = 0; k < nn; ++k) {
+      const std::size_t p = static_cast<std::size_t>(near_[k]);
+      St s;
+      s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
+      int j = 0;
+      s.for_each_weight([&](int64_t n, double) {
+        const std::size_t q = k * N + j++;
+        const uint32_t key = pair_key_[q];
+        if (key == 0) return;
+        if (key == kOverflow) {
+          ++overflow_;  // more crossings than a key holds: the pair uses the ordinary field
+          return;
+        }
+        int32_t b = node_block_[n];
+        if (b < 0) {
+          b = static_cast<int32_t>(block_node_.size());
+          node_block_[n] = b;
+          block_node_.push_back(n);
+          block_nslots_.push_back(0);
+          block_key_.insert(block_key_.end(), kExtra, 0u);
+          normals.insert(normals.end(), 2 * kExtra, V::Zero());
+        }
+        int slot = -1;
+        for (int t = 0; t < block_nslots_[b]; ++t)
+          if (block_key_[b * kExtra + t] == key) slot = t;
+        if (slot < 0) {
+          if (block_nslots_[b] == kExtra) {
+            ++overflow_;  // a fifth field: this pair falls back to the ordinary field
+            return;
+          }
+          slot = block_nslots_[b]++;
+          block_key_[b * kExtra + slot] = key;
+        }
+        pair_slot_[q] = static_cast<uint8_t>(slot + 1);
+        for (int c = 0; c < 2; ++c) {
+          const uint32_t code = (key >> (16 * c)) & 0xffffu;
+          if (!code) continue;
+          const int crack = static_cast<int>((code - 1) / 2);
+          normals[2 * (b * kExtra + slot) + c] += segment_normal(cracks_[crack], pair_seg_[2 * q + c]);
+        }
+      });
+    }
+    const std::size_t ns = block_node_.size() * kExtra;
+    mass_.assign(ns, 0.0);
+    momentum_.assign(ns, V::Zero());
+    force_.assign(ns, V::Zero());
+    disp_.assign(ns, V::Zero());
+    xkin_.assign(ns, NodeKinematics<2>{V::Zero(), V::Zero()});
+    normal_.swap(normals);
+    volume_.assign(block_node_.size(), 0.0);
+    disp0_.assign(block_node_.size(), V::Zero());
+  }
+
+  // Sum of the crack normals stored for `crack` in field x (none for the ordinary field).
+  V normal_sum(int32_t x, int crack) const {
+    if (x < 0) return V::Zero();
+    const uint32_t key = block_key_[x];
+    V s = V::Zero();
+    for (int c = 0; c < 2; ++c) {
+      const uint32_t code = (key >> (16 * c)) & 0xffffu;
+      if (code && static_cast<int>((code - 1) / 2) == crack) s += normal_[2 * x + c];
+    }
+    return s;
+  }
+
+  // Do keys a and b differ in exactly one crack? Then crack is that crack, and rank (+1 above,
+  // 0 not crossed, -1 below) says which field holds the material above it.
+  static bool differ_in_one_crack(uint32_t a, uint32_t b, int& crack, int& rank_a, int& rank_b) {
+    int cr[4], ra[4], rb[4], n = 0;
+    auto add = [&](uint32_t key, int* r) {
+      for (int c = 0; c < 2; ++c) {
+        const uint32_t code = (key >> (16 * c)) & 0xffffu;
+        if (!code) continue;
+        const int k = static_cast<int>((code - 1) / 2), rank = (code - 1) % 2 ? -1 : 1;
+        int i = 0;
+        while (i < n && cr[i] != k) ++i;
+        if (i == n) {
+          cr[n] = k, ra[n] = 0, rb[n] = 0;
+          ++n;
+        }
+        r[i] = rank;
+      }
+    };
+    add(a, ra);
+    add(b, rb);
+    int diff = 0;
+    for (int i = 0; i < n; ++i)
+      if (ra[i] != rb[i]) {
+        ++diff;
+        crack = cr[i], rank_a = ra[i], rank_b = rb[i];
+      }
+    return diff == 1;
+  }
+
+  V cm_velocity(const V& x) const {
+    V sum = V::Zero();
+    double wsum = 0.0;
+    linear_nodes(x, [&](int64_t n, double w) {
+      double m = grid_.mass[n];
+      V p = grid_.momentum[n];
+      const int32_t b = node_block_[n];
+      if (b >= 0)
+        for (int s = 0; s < block_nslots_[b]; ++s) m += mass_[b * kExtra + s], p += momentum_[b * kExtra + s];
+      if (m > 0.0) sum += w * p / m, wsum += w;
+    });
+    return wsum > 0.0 ? V(sum / wsum) : V::Zero();
+  }
+
+  // Velocity of the field that a virtual particle at `probe` would use, interpolated at x.
+  V side_velocity(const V& x, const V& probe, const V& fallback) const {
+    V sum = V::Zero();
+    double wsum = 0.0;
+    linear_nodes(x, [&](int64_t n, double w) {
+      int32_t seg[2];
+      const uint32_t key = classify(probe, node_position(n), seg);
+      if (key == kOverflow) return;
+      int32_t xs = -1;
+      if (key != 0) {
+        const int32_t b = node_block_[n];
+        if (b < 0) return;
+        for (int s = 0; s < block_nslots_[b]; ++s)
+          if (block_key_[b * kExtra + s] == key) xs = b * kExtra + s;
+        if (xs < 0) return;
+      }
+      const double m = xs < 0 ? grid_.mass[n] : mass_[xs];
+      if (m > 0.0) sum += w * (xs < 0 ? grid_.momentum[n] : momentum_[xs]) / m, wsum += w;
+    });
+    return wsum > 0.0 ? V(sum / wsum) : fallback;
+  }
+
+  // The four nodes of x's cell with bilinear weights (massless crack particles have no size).
+  template <class F>
+  void linear_nodes(const V& x, F&& f) const {
+    const double fx = (x.x() - G_.origin.x()) * inv_h_, fy = (x.y() - G_.origin.y()) * inv_h_;
+    if (!(fx >= 0.0 && fy >= 0.0 && fx <= cells_[0] && fy <= cells_[1])) return;
+    const int i = std::min(static_cast<int>(fx), cells_[0] - 1), j = std::min(static_cast<int>(fy), cells_[1] - 1);
+    const double rx = fx - i, ry = fy - j;
+    const int64_t n00 = static_cast<int64_t>(i) * stride_[0] + j;
+    f(n00, (1 - rx) * (1 - ry));
+    f(n00 + 1, (1 - rx) * ry);
+    f(n00 + stride_[0], rx * (1 - ry));
+    f(n00 + stride_[0] + 1, rx * ry);
+  }
+
+  Model<2>& m_;
+  Particles<2>& P_;
+  const GridGeometry<2>& G_;
+  GridFields<2>& grid_;
+  std::vector<NodeKinematics<2>>& kin_;
+  std::vector<crack::Crack2D>& cracks_;
+  std::array<std::size_t, 2> stride_;
+  double inv_h_;
+  int cells_[2];
+  std::vector<double> area0_;
+
+  std::vector<int32_t> cell_head_;
+  std::vector<int64_t> touched_;
+  std::vector<Entry> entries_;
+
+  std::vector<uint8_t> near_flag_;
+  std::vector<int32_t> near_, prev_near_;
+  bool near_changed_ = true;
+
+  std::vector<uint32_t> pair_key_;
+  std::vector<int32_t> pair_seg_;
+  std::vector<uint8_t> pair_slot_;
+
+  std::vector<int32_t> node_block_;
+  std::vector<int64_t> block_node_;
+  std::vector<uint8_t> block_nslots_;
+  std::vector<uint32_t> block_key_;
+  std::vector<double> mass_, volume_;
+  std::vector<V> momentum_, force_, disp_, normal_, disp0_;
+  std::vector<NodeKinematics<2>> xkin_;
+  long overflow_ = 0;
+  long contacts_ = 0;
+};
+
+}  // namespace cleave
