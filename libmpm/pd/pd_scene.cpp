@@ -1,6 +1,7 @@
 #include "libmpm/pd/pd_scene.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -19,6 +20,12 @@ using nlohmann::json;
 
 const char* const kPdFields[] = {"displacement", "velocity", "damage", "stress", "von_mises",
                                  "principal_stress_difference", "material", "volume", "size"};
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
 
 std::string index_path(const std::string& base, std::size_t i) { return base + "[" + std::to_string(i) + "]"; }
 
@@ -443,8 +450,8 @@ PdSystem<Dim> build_pd_system(const json& scene) {
     } else if (r.has("dt")) {
       m.dt = r.positive("dt", T);
       if (m.dt > m.stable_dt)
-        throw SceneError("time.dt", "above the stable limit of seed 003 eq. 15: dt = " + std::to_string(m.dt) +
-                                        " s > sqrt(2 rho / sum_j V_j c_ij) = " + std::to_string(m.stable_dt) +
+        throw SceneError("time.dt", "above the stable limit of seed 003 eq. 15: dt = " + fmt(m.dt) +
+                                        " s > sqrt(2 rho / sum_j V_j c_ij) = " + fmt(m.stable_dt) +
                                         " s; use a smaller dt or time.cfl");
     } else {
       const double cfl = r.positive_or("cfl", 0.5);
