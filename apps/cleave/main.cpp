@@ -8,9 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "apps/cleave/pd_cli.hpp"
 #include "apps/cleave/progress.hpp"
 #include "apps/cleave/render_cli.hpp"
 #include "libmpm/core/error.hpp"
+#include "libmpm/pd/pd_scene.hpp"
 #include "libmpm/scene/scene.hpp"
 #include "libmpm/solver/run.hpp"
 
@@ -217,6 +219,8 @@ int main(int argc, char** argv) {
   try {
     nlohmann::json scene = load_scene_file(a.scene);
     for (const auto& kv : a.sets) apply_set(scene, kv);
+    if (pd::is_peridynamics(scene))  // "method": "peridynamics" (apps/cleave/pd_cli.cpp)
+      return app::run_peridynamics(scene, {a.command, a.scene, a.out, a.resume, a.quiet});
     return scene_dimension(scene) == 3 ? run_dim<3>(scene, a) : run_dim<2>(scene, a);
   } catch (const SceneError& e) {
     std::fprintf(stderr, "cleave: %s: error at '%s': %s\n", a.scene.c_str(), e.key_path().c_str(), e.reason().c_str());

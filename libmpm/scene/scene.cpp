@@ -117,8 +117,10 @@ int scene_dimension(const json& scene) {
 
 template <int Dim>
 Model<Dim> build_model(const json& scene) {
-  ObjectReader top(scene, "", {"title", "description", "units", "analysis", "grid", "mpm", "materials",
+  ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "grid", "mpm", "materials",
                                "bodies", "loads", "cracks", "damping", "time", "output", "checks"});
+  if (top.has("method") && top.string("method") != "mpm")  // peridynamics: libmpm/pd/pd_scene.cpp
+    throw SceneError("method", "build_model reads MPM scenes only (\"method\": \"mpm\")");
   register_builtin_materials();
   Model<Dim> m;
   const UnitSystem units = UnitSystem::from_json(scene.value("units", json()), "units");

@@ -1,0 +1,502 @@
+#include "libmpm/pd/pd_scene.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <unordered_map>
+
+#include "libmpm/crack/crack2d.hpp"
+#include "libmpm/geometry/shape.hpp"
+#include "libmpm/pd/precrack.hpp"
+#include "libmpm/scene/json_reader.hpp"
+#include "libmpm/scene/units.hpp"
+
+namespace cleave::pd {
+namespace {
+
+using nlohmann::json;
+
+const char* const kPdFields[] = {"displacement", "velocity", "damage", "stress", "von_mises",
+                                 "principal_stress_difference", "material", "volume", "size"};
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string index_path(const std::string& base, std::size_t i) { return base + "[" + std::to_string(i) + "]"; }
+
+const json& array_at(const json& root, const char* key, bool required) {
+  static const json empty = json::array();
+  if (!root.contains(key) || root[key].is_null()) {
+    if (required) throw SceneError(key, "missing");
+    return empty;
+  }
+  if (!root[key].is_array()) throw SceneError(key, "expected an array");
+  return root[key];
+}
+
+// Lattice index of a point: points sit at (k + 1/2) dx on every axis, one lattice for all bodies.
+template <int Dim>
+int64_t lattice_key(const std::array<int64_t, Dim>& q) {
+  int64_t k = 0;
+  for (int d = 0; d < Dim; ++d) k = k * 4000037 + q[d];
+  return k;
+}
+
+template <int Dim>
+void read_region(const ObjectReader& r, const char* key, double L, Vec<Dim>& lo, Vec<Dim>& hi) {
+  ObjectReader rr(r[key], r.at(key), {"min", "max"});
+  lo = rr.vec<Dim>("min", L);
+  hi = rr.vec<Dim>("max", L);
+  for (int d = 0; d < Dim; ++d)
+    if (!(hi[d] >= lo[d])) throw SceneError(rr.at("max"), "region max is below region min");
+}
+
+template <int Dim>
+bool in_box(const Vec<Dim>& x, const Vec<Dim>& lo, const Vec<Dim>& hi, double tol) {
+  for (int d = 0; d < Dim; ++d)
+    if (x[d] < lo[d] - tol || x[d] > hi[d] + tol) return false;
+  return true;
+}
+
+}  // namespace
+
+bool is_peridynamics(const json& scene) {
+  if (!scene.is_object() || !scene.contains("method")) return false;
+  const json& m = scene["method"];
+  if (!m.is_string()) throw SceneError("method", "expected a string (mpm or peridynamics)");
+  const std::string s = m.get<std::string>();
+  if (s == "peridynamics") return true;
+  if (s == "mpm") return false;
+  throw SceneError("method", "unknown method '" + s + "'; valid: mpm, peridynamics");
+}
+
+template <int Dim>
+PdSystem<Dim> build_pd_system(const json& scene) {
+  ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "peridynamics", "materials",
+                               "bodies", "cracks", "loads", "damping", "time", "output", "checks"});
+  PdSystem<Dim> m;
+  const UnitSystem units = UnitSystem::from_json(scene.value("units", json()), "units");
+  const double L = units.factor(Quantity::Length);
+  m.title = top.string_or("title", "");
+
+  // --- analysis -------------------------------------------------------------------------------
+  {
+    if (!top.has("analysis")) throw SceneError("analysis", "missing (plane_strain, plane_stress or 3d)");
+    ObjectReader r(scene["analysis"], "analysis", {"type", "thickness"});
+    const std::string type = r.string("type");
+    if (type == "plane_strain") m.analysis = Analysis::PlaneStrain;
+    else if (type == "plane_stress") m.analysis = Analysis::PlaneStress;
+    else if (type == "3d") m.analysis = Analysis::ThreeD;
+    else throw SceneError("analysis.type", "unknown analysis '" + type + "'; valid: plane_strain, plane_stress, 3d");
+    if (dimension_of(m.analysis) != Dim) throw SceneError("analysis.type", "dimension mismatch");
+    if (Dim == 3 && r.has("thickness")) throw SceneError("analysis.thickness", "a 3D analysis has no thickness");
+    if (m.analysis == Analysis::PlaneStress && !r.has("thickness"))
+      throw SceneError("analysis.thickness", "missing: a plane-stress analysis needs the specimen thickness");
+    m.thickness = Dim == 2 ? r.positive_or("thickness", 1.0, L) : 1.0;
+  }
+  const PdModel model = m.analysis == Analysis::PlaneStress   ? PdModel::PlaneStress
+                            : m.analysis == Analysis::PlaneStrain ? PdModel::PlaneStrain
+                                                                  : PdModel::ThreeD;
+
+  // --- peridynamics ---------------------------------------------------------------------------
+  std::vector<std::pair<Vec<Dim>, Vec<Dim>>> no_fail;
+  if (!top.has("peridynamics")) throw SceneError("peridynamics", "missing (needs at least spacing)");
+  {
+    ObjectReader r(scene["peridynamics"], "peridynamics", {"spacing", "horizon_factor", "no_fail", "crack_tips",
+                                                           "tip_damage"});
+    m.dx = r.positive("spacing", L);
+    m.horizon_factor = r.integer_or("horizon_factor", 3, 1, 12);
+    m.delta = m.horizon_factor * m.dx;
+    m.tip_threshold = r.number_or("tip_damage", 0.3);
+    if (!(m.tip_threshold > 0.0 && m.tip_threshold < 1.0))
+      throw SceneError(r.at("tip_damage"), "must lie strictly between 0 and 1");
+    if (r.has("no_fail")) {
+      const json& nf = r["no_fail"];
+      if (!nf.is_array()) throw SceneError(r.at("no_fail"), "expected an array of regions {min, max}");
+      for (std::size_t i = 0; i < nf.size(); ++i) {
+        const std::string p = index_path(r.at("no_fail"), i);
+        ObjectReader rr(nf[i], p, {"min", "max"});
+        Vec<Dim> lo = rr.vec<Dim>("min", L), hi = rr.vec<Dim>("max", L);
+        for (int d = 0; d < Dim; ++d)
+          if (!(hi[d] >= lo[d])) throw SceneError(rr.at("max"), "region max is below region min");
+        no_fail.emplace_back(lo, hi);
+      }
+    }
+    if (r.has("crack_tips")) {
+      const json& ct = r["crack_tips"];
+      if (!ct.is_array() || ct.empty()) throw SceneError(r.at("crack_tips"), "expected a non-empty array of trackers");
+      for (std::size_t i = 0; i < ct.size(); ++i) {
+        const std::string p = index_path(r.at("crack_tips"), i);
+        ObjectReader rr(ct[i], p, {"name", "direction", "region"});
+        TipTracker<Dim> t;
+        t.name = rr.string_or("name", std::to_string(i));
+        const Vec<Dim> d = rr.vec<Dim>("direction");
+        if (!(d.norm() > 0)) throw SceneError(rr.at("direction"), "must not be the zero vector");
+        t.direction = d.normalized();
+        if (rr.has("region")) {
+          t.has_region = true;
+          read_region<Dim>(rr, "region", L, t.lo, t.hi);
+        }
+        for (const auto& o : m.trackers)
+          if (o.name == t.name) throw SceneError(rr.at("name"), "duplicate tracker name '" + t.name + "'");
+        m.trackers.push_back(t);
+      }
+    } else {
+      TipTracker<Dim> t;
+      t.name = "0";
+      m.trackers.push_back(t);  // the damaged point farthest along +x
+    }
+  }
+
+  // --- materials: linear elastic constants plus the fracture energy ------------------------------
+  std::map<std::string, int> material_index;
+  const json& mats = array_at(scene, "materials", true);
+  if (mats.empty()) throw SceneError("materials", "at least one material is needed");
+  for (std::size_t i = 0; i < mats.size(); ++i) {
+    const std::string path = index_path("materials", i);
+    ObjectReader r(mats[i], path, {"name", "type", "E", "nu", "density", "fracture_energy"});
+    PdMaterial pm;
+    pm.name = r.string("name");
+    const std::string type = r.string("type");
+    if (type != "linear_elastic")
+      throw SceneError(r.at("type"), "unknown material type '" + type + "' for peridynamics; valid: linear_elastic");
+    if (material_index.count(pm.name)) throw SceneError(r.at("name"), "duplicate material name '" + pm.name + "'");
+    pm.E = r.positive("E", units.factor(Quantity::Stress));
+    pm.density = r.positive("density", units.factor(Quantity::Density));
+    if (!r.has("fracture_energy"))
+      throw SceneError(r.at("fracture_energy"), "missing: peridynamics needs the fracture energy G0 (critical stretch)");
+    pm.G0 = r.positive("fracture_energy", units.factor(Quantity::Stress) * L);
+    // Bond-based peridynamics fixes nu (1/3 plane stress, 1/4 otherwise); E is matched, and in 3D
+    // K = E / (3 (1 - 2 nu)) with that nu, so the lattice reproduces the scene's Young's modulus.
+    const double nu_implied = model == PdModel::PlaneStress ? 1.0 / 3.0 : 0.25;
+    if (r.has("nu")) {
+      pm.nu_given = r.number("nu");
+      if (std::fabs(pm.nu_given - nu_implied) > 1e-6)
+        m.warnings.push_back(path + ".nu = " + std::to_string(pm.nu_given) +
+                             " is ignored: bond-based peridynamics implies nu = " + std::to_string(nu_implied) +
+                             " for this analysis (E is matched)");
+    }
+    const double modulus = model == PdModel::ThreeD ? pm.E / (3.0 * (1.0 - 2.0 * nu_implied)) : pm.E;
+    pm.k = pd_constants(model, modulus, pm.G0, m.delta, m.thickness);
+    material_index[pm.name] = static_cast<int>(i);
+    m.materials.push_back(pm);
+  }
+
+  // --- bodies on one lattice: points at (k + 1/2) dx ---------------------------------------------
+  const json& bodies = array_at(scene, "bodies", true);
+  if (bodies.empty()) throw SceneError("bodies", "at least one body is needed");
+  auto& P = m.points;
+  std::unordered_map<int64_t, int32_t> occupied;  // lattice key -> point
+  std::vector<std::array<int64_t, Dim>> coord;
+  std::vector<Vec<Dim>> body_velocity;
+  const double vol = std::pow(m.dx, Dim) * (Dim == 2 ? m.thickness : 1.0);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const std::string path = index_path("bodies", i);
+    ObjectReader r(bodies[i], path, {"name", "material", "shape", "particles_per_cell", "velocity", "thickness"});
+    if (r.has("particles_per_cell"))
+      throw SceneError(r.at("particles_per_cell"), "not used by peridynamics: the lattice spacing is peridynamics.spacing");
+    if (r.has("thickness"))
+      throw SceneError(r.at("thickness"), "peridynamics uses analysis.thickness for every body");
+    const std::string name = r.string_or("name", "body" + std::to_string(i));
+    for (const auto& b : m.bodies)
+      if (b == name) throw SceneError(r.at("name"), "duplicate body name '" + name + "'");
+    const std::string mat = r.string("material");
+    if (!material_index.count(mat)) throw SceneError(r.at("material"), "no material named '" + mat + "'");
+    const int mi = material_index[mat];
+    if (!r.has("shape")) throw SceneError(r.at("shape"), "missing");
+    const auto shape = geom::parse_shape<Dim>(bodies[i]["shape"], r.at("shape"), L);
+    const Vec<Dim> v0 =
+        r.has("velocity") ? r.vec<Dim>("velocity", units.factor(Quantity::Velocity)) : Vec<Dim>::Zero();
+    const auto bb = shape->bounds();
+    std::array<int64_t, Dim> c0, c1;
+    double cells = 1;
+    for (int d = 0; d < Dim; ++d) {
+      c0[d] = static_cast<int64_t>(std::floor(bb.lo[d] / m.dx)) - 1;
+      c1[d] = static_cast<int64_t>(std::ceil(bb.hi[d] / m.dx)) + 1;
+      cells *= double(c1[d] - c0[d]);
+    }
+    if (cells > 2e9) throw SceneError("peridynamics.spacing", "body '" + name + "' would need more than 2e9 lattice sites");
+    const std::size_t first = P.size();
+    std::array<int64_t, Dim> q;
+    for (q[0] = c0[0]; q[0] < c1[0]; ++q[0])
+      for (q[1] = c0[1]; q[1] < c1[1]; ++q[1])
+        for (int64_t z = (Dim == 3 ? c0[Dim - 1] : 0); z < (Dim == 3 ? c1[Dim - 1] : 1); ++z) {
+          if constexpr (Dim == 3) q[2] = z;
+          Vec<Dim> x;
+          for (int d = 0; d < Dim; ++d) x[d] = m.dx * (static_cast<double>(q[d]) + 0.5);
+          if (!shape->contains(x)) continue;
+          const int64_t key = lattice_key<Dim>(q);
+          if (auto it = occupied.find(key); it != occupied.end())
+            throw SceneError(r.at("shape"), "body '" + name + "' overlaps body '" + m.bodies[P.body[it->second]] +
+                                                "' (peridynamic bodies may not share lattice points)");
+          const auto p = static_cast<int32_t>(P.size());
+          occupied.emplace(key, p);
+          P.resize(P.size() + 1);
+          P.x0[p] = x;
+          P.u[p].setZero();
+          P.v[p] = v0;
+          P.a[p].setZero();
+          P.b[p].setZero();
+          P.volume[p] = vol;
+          P.mass[p] = m.materials[mi].density * vol;
+          P.material[p] = mi;
+          P.body[p] = static_cast<int32_t>(m.bodies.size());
+          P.no_fail[p] = 0;
+          P.fixed[p] = 0;
+          P.v_fixed[p].setZero();
+          coord.push_back(q);
+        }
+    if (P.size() == first)
+      throw SceneError(r.at("shape"), "body '" + name + "' holds no lattice point at this spacing");
+    m.bodies.push_back(name);
+  }
+  if (P.size() > static_cast<std::size_t>(std::numeric_limits<int32_t>::max()))
+    throw SceneError("peridynamics.spacing", "more than 2^31 - 1 points");
+  const double tol = 1e-9 * m.dx;
+  for (std::size_t p = 0; p < P.size(); ++p)
+    for (const auto& [lo, hi] : no_fail)
+      if (in_box<Dim>(P.x0[p], lo, hi, tol)) P.no_fail[p] = 1;
+
+  // --- loads ----------------------------------------------------------------------------------
+  const json& loads = array_at(scene, "loads", false);
+  auto axis_of = [](const std::string& s, const std::string& path) {
+    if (s == "x") return 0;
+    if (s == "y") return 1;
+    if (s == "z" && Dim == 3) return 2;
+    throw SceneError(path, "unknown axis '" + s + "'; valid: " + std::string(Dim == 3 ? "x, y, z" : "x, y"));
+  };
+  for (std::size_t i = 0; i < loads.size(); ++i) {
+    const std::string path = index_path("loads", i);
+    if (!loads[i].is_object() || !loads[i].contains("type"))
+      throw SceneError(path + ".type", "missing (traction, body_force or velocity)");
+    const std::string type = loads[i]["type"].is_string() ? loads[i]["type"].get<std::string>() : "";
+    if (type == "traction") {
+      ObjectReader r(loads[i], path, {"type", "name", "body", "region", "face", "traction", "rise_time"});
+      PdLoad<Dim> ld;
+      ld.name = r.string_or("name", path);
+      ld.force_density = r.vec<Dim>("traction", units.factor(Quantity::Stress)) / m.dx;
+      ld.rise_time = r.has("rise_time") ? r.positive("rise_time", units.factor(Quantity::Time)) : 0.0;
+      const std::string face = r.string("face");
+      if (face.size() != 2 || (face[0] != '+' && face[0] != '-'))
+        throw SceneError(r.at("face"), "expected a face such as \"+y\" or \"-x\"");
+      const int side = face[0] == '+' ? 1 : -1;
+      const int axis = axis_of(face.substr(1), r.at("face"));
+      bool region = r.has("region");
+      Vec<Dim> lo, hi;
+      if (region) read_region<Dim>(r, "region", L, lo, hi);
+      int body = -1;
+      if (r.has("body")) {
+        const std::string bn = r.string("body");
+        for (std::size_t k = 0; k < m.bodies.size(); ++k)
+          if (m.bodies[k] == bn) body = static_cast<int>(k);
+        if (body < 0) throw SceneError(r.at("body"), "no body named '" + bn + "'");
+      }
+      for (std::size_t p = 0; p < P.size(); ++p) {
+        if (body >= 0 && P.body[p] != body) continue;
+        if (region && !in_box<Dim>(P.x0[p], lo, hi, tol)) continue;
+        auto nq = coord[p];
+        nq[axis] += side;
+        auto it = occupied.find(lattice_key<Dim>(nq));
+        if (it != occupied.end() && P.body[it->second] == P.body[p]) continue;  // not on the body's face
+        ld.points.push_back(static_cast<int32_t>(p));
+      }
+      if (ld.points.empty())
+        throw SceneError(path, "no point on side " + face + " lies inside the region: nothing would be loaded");
+      m.loads.push_back(std::move(ld));
+    } else if (type == "body_force") {
+      ObjectReader r(loads[i], path, {"type", "acceleration"});
+      m.gravity += r.vec<Dim>("acceleration", units.factor(Quantity::Acceleration));
+    } else if (type == "velocity") {
+      ObjectReader r(loads[i], path, {"type", "region", "velocity"});
+      if (!r.has("region")) throw SceneError(r.at("region"), "missing: a velocity condition needs a region");
+      Vec<Dim> lo, hi;
+      read_region<Dim>(r, "region", L, lo, hi);
+      const json& vj = r["velocity"];
+      if (!r.has("velocity") || !vj.is_array() || vj.size() != Dim)
+        throw SceneError(r.at("velocity"), "expected " + std::to_string(Dim) + " entries, each a number or null (free)");
+      uint8_t mask = 0;
+      Vec<Dim> v = Vec<Dim>::Zero();
+      for (int d = 0; d < Dim; ++d) {
+        if (vj[d].is_null()) continue;
+        mask |= uint8_t(1u << d);
+        v[d] = ObjectReader::number_of(vj[d], r.at("velocity") + "[" + std::to_string(d) + "]") *
+               units.factor(Quantity::Velocity);
+      }
+      if (!mask) throw SceneError(r.at("velocity"), "every component is null: the condition does nothing");
+      int count = 0;
+      for (std::size_t p = 0; p < P.size(); ++p) {
+        if (!in_box<Dim>(P.x0[p], lo, hi, tol)) continue;
+        ++count;
+        P.fixed[p] |= mask;
+        for (int d = 0; d < Dim; ++d)
+          if (mask & (1u << d)) P.v_fixed[p][d] = v[d], P.v[p][d] = v[d];
+      }
+      if (!count) throw SceneError(r.at("region"), "no lattice point lies inside the region");
+    } else if (type == "symmetry") {
+      throw SceneError(path + ".type", "symmetry is not available with peridynamics (lattice points do not lie on "
+                                       "the plane); model the whole specimen or use a velocity condition");
+    } else {
+      throw SceneError(path + ".type", "unknown load type '" + type + "'; valid: traction, body_force, velocity");
+    }
+  }
+
+  // --- bonds: same body only, minus those crossing a pre-crack -----------------------------------
+  BondList<Dim> bl = build_bonds<Dim>(P.x0, m.dx, m.delta);
+  std::vector<uint8_t> keep(bl.size(), 1);
+  for (std::size_t k = 0; k < bl.size(); ++k)
+    if (P.body[bl.i[k]] != P.body[bl.j[k]]) keep[k] = 0;
+  if (top.has("cracks")) {
+    if constexpr (Dim == 2) {
+      const auto cracks = crack::parse_cracks(scene["cracks"], "cracks", L);
+      for (const auto& c : cracks) {
+        std::size_t cut = 0;
+        for (std::size_t k = 0; k < bl.size(); ++k) {
+          if (!keep[k]) continue;
+          const Vec<2>& a = P.x0[bl.i[k]];
+          const Vec<2>& b = P.x0[bl.j[k]];
+          if (std::max(a.x(), b.x()) < c.lo.x() || std::min(a.x(), b.x()) > c.hi.x() ||
+              std::max(a.y(), b.y()) < c.lo.y() || std::min(a.y(), b.y()) > c.hi.y())
+            continue;
+          for (std::size_t s = 0; s + 1 < c.points.size(); ++s)
+            if (crack::segments_intersect(a, b, c.points[s], c.points[s + 1])) {
+              keep[k] = 0;
+              ++cut;
+              break;
+            }
+        }
+        if (!cut) m.warnings.push_back("crack '" + c.name + "' cuts no bond (it lies outside every body)");
+        m.precrack_bonds += cut;
+      }
+    } else {
+      const auto cracks = parse_cracks3d(scene["cracks"], "cracks", L);
+      for (const auto& c : cracks) {
+        std::size_t cut = 0;
+        for (std::size_t k = 0; k < bl.size(); ++k) {
+          if (!keep[k]) continue;
+          const Vec<3>& a = P.x0[bl.i[k]];
+          const Vec<3>& b = P.x0[bl.j[k]];
+          if ((a.cwiseMax(b).array() < c.lo.array()).any() || (a.cwiseMin(b).array() > c.hi.array()).any()) continue;
+          for (const auto& T : c.triangles)
+            if (segment_hits_triangle(a, b, T[0], T[1], T[2])) {
+              keep[k] = 0;
+              ++cut;
+              break;
+            }
+        }
+        if (!cut) m.warnings.push_back("crack '" + c.name + "' cuts no bond (it lies outside every body)");
+        m.precrack_bonds += cut;
+      }
+    }
+  }
+  // Directed neighbour lists (pd_model.hpp): count, then fill in (i, j) order.
+  {
+    auto& N = m.nb;
+    const std::size_t n = P.size();
+    N.offset.assign(n + 1, 0);
+    for (std::size_t k = 0; k < bl.size(); ++k)
+      if (keep[k]) ++N.offset[bl.i[k] + 1], ++N.offset[bl.j[k] + 1], ++m.bond_count;
+    for (std::size_t p = 0; p < n; ++p) N.offset[p + 1] += N.offset[p];
+    const std::size_t ne = static_cast<std::size_t>(N.offset[n]);
+    N.partner.resize(ne), N.r0.resize(ne), N.stiff.resize(ne), N.s0.resize(ne), N.w0.resize(ne);
+    N.intact.assign(ne, 1);
+    // Entries of p: first the bonds where p is j (partners i < p, in increasing i, since the list is
+    // sorted by i), then those where p is i (partners j > p, increasing): sorted by partner.
+    std::vector<int64_t> fill(N.offset.begin(), N.offset.end() - 1);
+    auto put = [&](int32_t p, int32_t q, std::size_t k) {
+      const auto e = static_cast<std::size_t>(fill[p]++);
+      const auto& mat = m.materials[P.material[p]];
+      N.partner[e] = q;
+      N.r0[e] = bl.xi_len[k];
+      N.w0[e] = bl.vol_factor[k] * P.volume[q];
+      N.stiff[e] = mat.k.c * N.w0[e];
+      N.s0[e] = (P.no_fail[p] || P.no_fail[q]) ? std::numeric_limits<double>::infinity() : mat.k.s0;
+    };
+    for (std::size_t k = 0; k < bl.size(); ++k)
+      if (keep[k]) put(bl.j[k], bl.i[k], k);
+    for (std::size_t k = 0; k < bl.size(); ++k)
+      if (keep[k]) put(bl.i[k], bl.j[k], k);
+  }
+  // Eq. 15 of seed 003, per point: dt_i = sqrt(2 rho_i / sum_j V_j c_ij), c_ij = c beta / |xi|.
+  {
+    double worst = std::numeric_limits<double>::infinity();
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      double s = 0.0;
+      for (int64_t e = m.nb.offset[p]; e < m.nb.offset[p + 1]; ++e) s += m.nb.stiff[e] / m.nb.r0[e];
+      if (s > 0) worst = std::min(worst, std::sqrt(2.0 * m.materials[P.material[p]].density / s));
+    }
+    m.stable_dt = worst;
+  }
+
+  // --- damping, time, output, checks ------------------------------------------------------------
+  if (top.has("damping")) {
+    ObjectReader r(scene["damping"], "damping", {"kinetic"});
+    m.damping = r.number_or("kinetic", 0.0, units.factor(Quantity::InverseTime));
+    if (m.damping < 0) throw SceneError("damping.kinetic", "must not be negative");
+  }
+  const double T = units.factor(Quantity::Time);
+  {
+    if (!top.has("time")) throw SceneError("time", "missing (needs at least time.end)");
+    ObjectReader r(scene["time"], "time", {"end", "dt", "cfl"});
+    m.end_time = r.positive("end", T);
+    if (r.has("dt") && r.has("cfl")) throw SceneError("time.cfl", "give time.dt or time.cfl, not both");
+    if (!std::isfinite(m.stable_dt)) {
+      if (!r.has("dt")) throw SceneError("time.dt", "missing: no point has a bond, so there is no stable step to scale");
+      m.dt = r.positive("dt", T);
+    } else if (r.has("dt")) {
+      m.dt = r.positive("dt", T);
+      if (m.dt > m.stable_dt)
+        throw SceneError("time.dt", "above the stable limit of seed 003 eq. 15: dt = " + fmt(m.dt) +
+                                        " s > sqrt(2 rho / sum_j V_j c_ij) = " + fmt(m.stable_dt) +
+                                        " s; use a smaller dt or time.cfl");
+    } else {
+      const double cfl = r.positive_or("cfl", 0.5);
+      if (cfl > 1.0) throw SceneError("time.cfl", "must be at most 1 (got " + std::to_string(cfl) + ")");
+      m.dt = cfl * m.stable_dt;
+    }
+  }
+  {
+    m.output.interval = m.end_time / 100;
+    m.output.fields = {std::begin(kPdFields), std::end(kPdFields)};
+    if (top.has("output")) {
+      ObjectReader r(scene["output"], "output", {"interval", "global_interval", "tip_interval", "fields"});
+      m.output.interval = r.positive_or("interval", m.end_time / 100, T);
+      if (r.has("fields")) {
+        const json& f = r["fields"];
+        if (!f.is_array()) throw SceneError("output.fields", "expected an array of field names");
+        m.output.fields.clear();
+        for (std::size_t i = 0; i < f.size(); ++i) {
+          const std::string p = index_path("output.fields", i);
+          if (!f[i].is_string()) throw SceneError(p, "expected a field name");
+          const std::string name = f[i].get<std::string>();
+          if (std::find(std::begin(kPdFields), std::end(kPdFields), name) == std::end(kPdFields)) {
+            std::string valid;
+            for (const char* n : kPdFields) valid += (valid.empty() ? "" : ", ") + std::string(n);
+            throw SceneError(p, "unknown field '" + name + "' for peridynamics; valid: " + valid);
+          }
+          m.output.fields.insert(name);
+        }
+      }
+      m.output.global_interval = r.positive_or("global_interval", m.output.interval / 10, T);
+      m.output.tip_interval = r.positive_or("tip_interval", m.output.global_interval, T);
+    } else {
+      m.output.global_interval = m.output.interval / 10;
+      m.output.tip_interval = m.output.global_interval;
+    }
+  }
+  if (top.has("checks")) {
+    ObjectReader r(scene["checks"], "checks", {"energy_blowup_factor"});
+    m.energy_blowup_factor = r.positive_or("energy_blowup_factor", 10.0);
+    if (m.energy_blowup_factor <= 1.0) throw SceneError("checks.energy_blowup_factor", "must be greater than 1");
+  }
+  return m;
+}
+
+template PdSystem<2> build_pd_system<2>(const json&);
+template PdSystem<3> build_pd_system<3>(const json&);
+
+}  // namespace cleave::pd
