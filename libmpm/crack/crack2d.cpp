@@ -23,8 +23,6 @@ bool within(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c) {
 
 int sign_of(double v) { return (v > 0.0) - (v < 0.0); }
 
-std::string idx(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
-
 // Adjacent segments a->b->c fold back onto each other: exactly collinear and reversing direction.
 // (The sign of a floating difference is exact, so the direction test is exact too.)
 bool folds_back(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c) {
@@ -66,7 +64,7 @@ std::vector<Vec<2>> read_points(const ObjectReader& r, double scale) {
   std::vector<Vec<2>> out;
   out.reserve(pts.size());
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    const std::string pi = idx(path, i);
+    const std::string pi = index_path(path, i);
     out.push_back(ObjectReader::vec_of<2>(pts[i], pi, scale));
     if (!out.back().allFinite()) throw SceneError(pi, "coordinates overflow after unit scaling");
     if (i > 0 && out[i] == out[i - 1])
@@ -160,7 +158,7 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
   out.reserve(cracks.size());
   std::map<std::string, std::size_t> names;
   for (std::size_t i = 0; i < cracks.size(); ++i) {
-    const ObjectReader r(cracks[i], idx(key_path, i),
+    const ObjectReader r(cracks[i], index_path(key_path, i),
                          {"name", "points", "from", "to", "segment_length", "contact"});
     Crack2D c;
     c.id = static_cast<int>(i);
@@ -168,7 +166,7 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
     if (c.name.empty()) throw SceneError(r.at("name"), "must not be empty");
     if (const auto [it, fresh] = names.emplace(c.name, i); !fresh)
       throw SceneError(r.at("name"), "duplicate crack name \"" + c.name + "\" (also " +
-                                         idx(key_path, it->second) + ")");
+                                         index_path(key_path, it->second) + ")");
     const bool has_points = r.has("points");
     const bool has_straight = r.has("from") || r.has("to") || r.has("segment_length");
     if (has_points && has_straight) {

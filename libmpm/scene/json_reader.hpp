@@ -1,10 +1,13 @@
 // Small helpers that read scene JSON with precise error messages: every failure names the key
 // path ("time.dt") and the reason, and unknown keys are rejected rather than silently ignored.
 #pragma once
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "libmpm/core/error.hpp"
@@ -92,5 +95,28 @@ class ObjectReader {
   const nlohmann::json& j_;
   std::string path_;
 };
+
+// Key path of element i of the array at `base`: "bodies[2]".
+inline std::string index_path(const std::string& base, std::size_t i) { return base + "[" + std::to_string(i) + "]"; }
+
+// Reads "output.fields" (an array of field names, each one of `valid`); `qualifier` is added to the
+// unknown-name error (" for peridynamics").
+template <class Names>
+std::set<std::string> read_field_names(const nlohmann::json& f, const Names& valid, const std::string& qualifier = "") {
+  if (!f.is_array()) throw SceneError("output.fields", "expected an array of field names");
+  std::set<std::string> out;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const std::string p = index_path("output.fields", i);
+    if (!f[i].is_string()) throw SceneError(p, "expected a field name");
+    const std::string name = f[i].get<std::string>();
+    if (std::find(std::begin(valid), std::end(valid), name) == std::end(valid)) {
+      std::string list;
+      for (const char* n : valid) list += (list.empty() ? "" : ", ") + std::string(n);
+      throw SceneError(p, "unknown field '" + name + "'" + qualifier + "; valid: " + list);
+    }
+    out.insert(name);
+  }
+  return out;
+}
 
 }  // namespace cleave

@@ -18,10 +18,6 @@ using nlohmann::json;
 const char* const kFieldNames[] = {"displacement", "velocity", "stress", "strain", "material",
                                    "mass", "volume", "size", "rotation", "von_mises", "principal_stress_difference"};
 
-std::string index_path(const std::string& base, std::size_t i) {
-  return base + "[" + std::to_string(i) + "]";
-}
-
 const json& array_at(const json& root, const char* key, bool required) {
   static const json empty = json::array();
   if (!root.contains(key) || root[key].is_null()) {
@@ -489,22 +485,7 @@ Model<Dim> build_model(const json& scene) {
     if (top.has("output")) {
       ObjectReader r(scene["output"], "output", {"interval", "global_interval", "fields"});
       m.output.interval = r.positive_or("interval", m.end_time / 100, T);
-      if (r.has("fields")) {
-        const json& f = r["fields"];
-        if (!f.is_array()) throw SceneError("output.fields", "expected an array of field names");
-        m.output.fields.clear();
-        for (std::size_t i = 0; i < f.size(); ++i) {
-          const std::string p = index_path("output.fields", i);
-          if (!f[i].is_string()) throw SceneError(p, "expected a field name");
-          const std::string name = f[i].get<std::string>();
-          if (std::find(std::begin(kFieldNames), std::end(kFieldNames), name) == std::end(kFieldNames)) {
-            std::string valid;
-            for (const char* n : kFieldNames) valid += (valid.empty() ? "" : ", ") + std::string(n);
-            throw SceneError(p, "unknown field '" + name + "'; valid: " + valid);
-          }
-          m.output.fields.insert(name);
-        }
-      }
+      if (r.has("fields")) m.output.fields = read_field_names(r["fields"], kFieldNames);
       m.output.global_interval = r.positive_or("global_interval", m.output.interval / 10, T);
     } else {
       m.output.global_interval = m.output.interval / 10;

@@ -134,11 +134,7 @@ class CrackFields {
     int32_t seg[2];
     const uint32_t key = classify(P_.x[p], node_pos, seg);
     if (key == 0 || key == kOverflow) return -1;
-    const int32_t b = node_block_[n];
-    if (b < 0) return -1;
-    for (int s = 0; s < block_nslots_[b]; ++s)
-      if (block_key_[b * kExtra + s] == key) return b * kExtra + s;
-    return -1;
+    return extra_field(n, key);
   }
 
   // Task 3, grid part, for the extra fields: body force and damping (eq. 28).
@@ -263,7 +259,6 @@ class CrackFields {
           }
           pa += dp;
           pb -= dp;
-          ++contacts_;
           if (back_compute) {
             force(n, xa) += dp / dt;
             force(n, xb) -= dp / dt;
@@ -296,8 +291,6 @@ class CrackFields {
     }
   }
 
-  // Momentum of all fields at all multi-field nodes, extra slots only (for checks).
-  long contacts() const { return contacts_; }
   // Pairs that needed a fifth field since the last call (reported by the stepper).
   long take_overflow() {
     const long o = overflow_;
@@ -463,9 +456,8 @@ class CrackFields {
           block_key_.insert(block_key_.end(), kExtra, 0u);
           normals.insert(normals.end(), 2 * kExtra, V::Zero());
         }
-        int slot = -1;
-        for (int t = 0; t < block_nslots_[b]; ++t)
-          if (block_key_[b * kExtra + t] == key) slot = t;
+        const int32_t x = extra_field(n, key);
+        int slot = x < 0 ? -1 : x - b * kExtra;
         if (slot < 0) {
           if (block_nslots_[b] == kExtra) {
             ++overflow_;  // a fifth field: this pair falls back to the ordinary field
@@ -492,6 +484,15 @@ class CrackFields {
     normal_.swap(normals);
     volume_.assign(block_node_.size(), 0.0);
     disp0_.assign(block_node_.size(), V::Zero());
+  }
+
+  // The extra-field slot of node n holding `key`, or -1 when the node has none.
+  int32_t extra_field(int64_t n, uint32_t key) const {
+    const int32_t b = node_block_[n];
+    if (b < 0) return -1;
+    for (int s = 0; s < block_nslots_[b]; ++s)
+      if (block_key_[b * kExtra + s] == key) return b * kExtra + s;
+    return -1;
   }
 
   // Sum of the crack normals stored for `crack` in field x (none for the ordinary field).
@@ -557,14 +558,8 @@ class CrackFields {
       int32_t seg[2];
       const uint32_t key = classify(probe, node_position(n), seg);
       if (key == kOverflow) return;
-      int32_t xs = -1;
-      if (key != 0) {
-        const int32_t b = node_block_[n];
-        if (b < 0) return;
-        for (int s = 0; s < block_nslots_[b]; ++s)
-          if (block_key_[b * kExtra + s] == key) xs = b * kExtra + s;
-        if (xs < 0) return;
-      }
+      const int32_t xs = key == 0 ? -1 : extra_field(n, key);
+      if (key != 0 && xs < 0) return;  // the node has no field for that side
       const double m = xs < 0 ? grid_.mass[n] : mass_[xs];
       if (m > 0.0) sum += w * (xs < 0 ? grid_.momentum[n] : momentum_[xs]) / m, wsum += w;
     });
@@ -616,7 +611,6 @@ class CrackFields {
   std::vector<V> momentum_, force_, disp_, normal_, disp0_;
   std::vector<NodeKinematics<2>> xkin_;
   long overflow_ = 0;
-  long contacts_ = 0;
 };
 
 }  // namespace cleave

@@ -146,6 +146,17 @@ class MpmStepper final : public Stepper<Dim> {
       }
   }
 
+  // body(p) for every particle not near a crack, in parallel (a pass that only gathers; the near
+  // particles take the crack path afterwards).
+  template <class F>
+  void for_far_particles(F&& body) {
+    const std::size_t np = P_.size();
+    const uint8_t* skip = skip_;
+#pragma omp parallel for schedule(static) if (worth_parallel(np))
+    for (std::size_t p = 0; p < np; ++p)
+      if (!skip || !skip[p]) body(p);
+  }
+
   // Contact at multi-field nodes whenever momenta were (re)computed (Tasks 2 and 6c).
   void crack_contact() {
     if constexpr (Dim == 2)
@@ -184,11 +195,7 @@ class MpmStepper final : public Stepper<Dim> {
       std::fill(grid_.force.begin(), grid_.force.end(), Vec<Dim>::Zero());
       order_.scatter(body);
     } else {
-      const std::size_t np = P_.size();
-      const uint8_t* skip = skip_;
-#pragma omp parallel for schedule(static) if (worth_parallel(np))
-      for (std::size_t p = 0; p < np; ++p)
-        if (!skip || !skip[p]) body(p);
+      for_far_particles(body);
     }
     if constexpr (Dim == 2)
       if (cf_) {  // particles near cracks: the same with each pair's velocity field
@@ -316,11 +323,7 @@ class MpmStepper final : public Stepper<Dim> {
       std::fill(grid_.momentum.begin(), grid_.momentum.end(), Vec<Dim>::Zero());
       order_.scatter(body);
     } else {
-      const std::size_t np = P_.size();
-      const uint8_t* skip = skip_;
-#pragma omp parallel for schedule(static) if (worth_parallel(np))
-      for (std::size_t p = 0; p < np; ++p)
-        if (!skip || !skip[p]) body(p);
+      for_far_particles(body);
     }
     if constexpr (Dim == 2)
       if (cf_) {
