@@ -159,7 +159,7 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
   std::map<std::string, std::size_t> names;
   for (std::size_t i = 0; i < cracks.size(); ++i) {
     const ObjectReader r(cracks[i], index_path(key_path, i),
-                         {"name", "points", "from", "to", "segment_length", "contact"});
+                         {"name", "points", "from", "to", "segment_length", "contact", "tips"});
     Crack2D c;
     c.id = static_cast<int>(i);
     c.name = r.string("name");
@@ -177,6 +177,11 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
       throw SceneError(r.at("points"), "missing (give \"points\", or \"from\", \"to\" and \"segment_length\")");
     c.points = has_points ? read_points(r, length_scale) : read_straight(r, length_scale);
     if (r.has("contact")) read_contact(r, c);
+    c.tips = r.string_or("tips", "auto");
+    if (c.tips != "auto" && c.tips != "both" && c.tips != "start" && c.tips != "end" && c.tips != "none")
+      throw SceneError(r.at("tips"), "unknown value \"" + c.tips + "\"; valid: auto, both, start, end, none");
+    c.tip[0] = c.tips == "both" || c.tips == "start" || c.tips == "auto";
+    c.tip[1] = c.tips == "both" || c.tips == "end" || c.tips == "auto";
     c.update_extent();
     c.above = c.below = c.points;
     out.push_back(std::move(c));

@@ -3,7 +3,9 @@
 // This header holds the crack description, the whole-crack crossing test (with the appendix's
 // crack-extent screening) and the scene parser for the "cracks" key.
 #pragma once
+#include <cstdint>
 #include <limits>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,11 @@ struct Crack2D {
   // whose displacements overlap are in contact).
   enum class Detection { Volume, Displacement } detection = Detection::Volume;
   double v_sep = 0.9, v_contact = 1.1;
+  // Which end points are crack tips (where crack_tips computes J and K): "auto" (an end with
+  // material ahead of it; the scene reader decides), "both", "start" (points[0]), "end"
+  // (points.back()) or "none". tip[0] / tip[1]: start / end, resolved by the scene reader.
+  std::string tips = "auto";
+  bool tip[2] = {true, true};
   // The surfaces above and below (crack particles moved with the velocity field of each side), in
   // step with `points`; the crack opening displacement is above - below. Set from points when empty.
   std::vector<Vec<2>> above, below;
@@ -61,13 +68,32 @@ inline Side crack_crossing(const Crack2D& c, const Vec<2>& particle, const Vec<2
   return crack_crossing_unscreened(c, particle, node);
 }
 
+// Velocity-field key of the line from x (a particle, or a point standing for one) to the node at
+// xn, over every crack: one code per crossed crack, code = 2 crack + (below ? 1 : 0) + 1, two codes
+// in ascending order (low 16 bits first); 0 when no crack is crossed, kFieldKeyOverflow when three
+// or more are. The same key the stepper's crack fields use (whole-crack scan, no spatial index).
+inline constexpr uint32_t kFieldKeyOverflow = 0xffffffffu;
+inline uint32_t field_key(const std::vector<Crack2D>& cracks, const Vec<2>& x, const Vec<2>& xn) {
+  uint32_t code[2] = {0, 0};
+  int count = 0;
+  for (const auto& c : cracks) {
+    const Side side = crack_crossing(c, x, xn);
+    if (side == Side::None) continue;
+    if (count == 2) return kFieldKeyOverflow;
+    code[count++] = static_cast<uint32_t>(2 * c.id + (side == Side::Below ? 1 : 0) + 1);
+  }
+  if (count == 2 && code[1] < code[0]) std::swap(code[0], code[1]);
+  return code[0] | (code[1] << 16);
+}
+
 // Parses the scene key "cracks" (key_path is its scene path, normally "cracks"): an array of
 //   { "name": string, "points": [[x, y], ...], "contact": {...} }        (polyline, >= 2 points)
 //   { "name": string, "from": [x, y], "to": [x, y], "segment_length": L, "contact": {...} }
 //        (a straight crack split into ceil(|to - from| / L) equal segments; the ratio is rounded
 //         down to an integer when within 1e-9 relative of it, so 1.1 / 0.1 gives 11 segments)
 // with the optional "contact": {"law": "stick" | "frictionless" | "friction" | "none", "mu": number,
-// "detection": "volume" | "displacement", "v_sep": number, "v_contact": number}
+// "detection": "volume" | "displacement", "v_sep": number, "v_contact": number} and the optional
+// "tips": "auto" | "both" | "start" | "end" | "none" (which ends are crack tips; default auto)
 // ("law" required inside "contact"; "mu" required and >= 0 for "friction", rejected otherwise;
 // default frictionless; detection default "volume" with v_sep 0.9 < 1 < v_contact 1.1, the two
 // critical volumes only valid with "volume"). above/below start equal to points. length_scale (scene length unit -> metres) multiplies coordinates and

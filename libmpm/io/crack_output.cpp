@@ -36,4 +36,18 @@ PointSet crack_point_set(const std::vector<crack::Crack2D>& cracks) {
   return ps;
 }
 
+PointSet crack_point_set(const std::vector<crack::Crack2D>& cracks, const std::vector<crack::TipRecord>& tips) {
+  PointSet ps = crack_point_set(cracks);
+  std::vector<std::size_t> first(cracks.size() + 1, 0);  // point index of each crack's first point
+  for (std::size_t i = 0; i < cracks.size(); ++i) first[i + 1] = first[i] + cracks[i].points.size();
+  PointArray j1{"J1", 1, {}}, j2{"J2", 1, {}}, k1{"KI", 1, {}}, k2{"KII", 1, {}};
+  for (PointArray* a : {&j1, &j2, &k1, &k2}) a->values.assign(ps.size(), 0.0);
+  for (const auto& t : tips) {
+    const std::size_t i = t.end == 0 ? first[t.crack] : first[t.crack + 1] - 1;
+    j1.values[i] = t.J1, j2.values[i] = t.J2, k1.values[i] = t.KI, k2.values[i] = t.KII;
+  }
+  for (PointArray* a : {&j1, &j2, &k1, &k2}) ps.arrays.push_back(std::move(*a));
+  return ps;
+}
+
 }  // namespace cleave::io

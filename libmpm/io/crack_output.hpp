@@ -5,15 +5,20 @@
 //   cod_normal        its component along the left normal of the crack (opening > 0, overlap < 0)
 //   cod_tangential    its component along the crack direction (sliding)
 //   crack             crack id (index in the scene's "cracks" array)
+// and, when the scene asks for crack-tip parameters ("crack_tips"), J1, J2 (J/m^2), KI, KII
+// (Pa m^1/2) at the tip points (zero at the other points).
 #pragma once
 #include <vector>
 
 #include "libmpm/crack/crack2d.hpp"
+#include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/io/point_set.hpp"
 
 namespace cleave::io {
 
 PointSet crack_point_set(const std::vector<crack::Crack2D>& cracks);
+// The same with the crack-tip parameters on the tip points.
+PointSet crack_point_set(const std::vector<crack::Crack2D>& cracks, const std::vector<crack::TipRecord>& tips);
 
 // Normal and tangential opening at point i of crack c (the quantities written above).
 Vec<2> crack_opening(const crack::Crack2D& c, std::size_t i);

@@ -61,6 +61,12 @@ class LinearElastic final : public Material<Dim> {
     return 0.5 * sym_contract<Dim>(s, e);
   }
 
+  bool isotropic_elastic(double& shear_modulus, double& poisson) const override {
+    shear_modulus = G_;
+    poisson = nu_;
+    return true;
+  }
+
   double wave_speed() const override {
     // Dilatational speed; the plane-stress value is smaller, so this bound is safe for every analysis.
     const double M = E_ * (1.0 - nu_) / ((1.0 + nu_) * (1.0 - 2.0 * nu_));

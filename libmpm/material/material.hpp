@@ -20,6 +20,12 @@ class Material {
   virtual void update(Sym<Dim>& stress, Sym<Dim>& strain, const Mat<Dim>& L, double dt) const = 0;
   // Stored elastic energy per unit volume for the current state.
   virtual double strain_energy_density(const Sym<Dim>& stress, const Sym<Dim>& strain) const = 0;
+  // Isotropic elastic constants, for K from J at crack tips: true and the shear modulus and
+  // Poisson's ratio when the law has them.
+  virtual bool isotropic_elastic(double& shear_modulus, double& poisson) const {
+    (void)shear_modulus, (void)poisson;
+    return false;
+  }
   // Largest wave speed (for the stable time step).
   virtual double wave_speed() const = 0;
   double density() const { return density_; }

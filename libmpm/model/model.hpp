@@ -2,11 +2,13 @@
 // materials, loads, grid conditions and the solver settings. Only what the scene declares exists.
 #pragma once
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "libmpm/crack/crack2d.hpp"
+#include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/material/material.hpp"
 #include "libmpm/model/grid.hpp"
 #include "libmpm/model/loads.hpp"
@@ -48,6 +50,7 @@ struct Model {
   std::vector<Body> bodies;
   Particles<Dim> particles;
   std::vector<crack::Crack2D> cracks;  // 2D explicit cracks (empty in 3D and in uncracked scenes)
+  std::optional<crack::TipSettings> crack_tips;  // J and K at the crack tips, when the scene asks
   std::vector<TractionLoad<Dim>> tractions;
   Vec<Dim> gravity = Vec<Dim>::Zero();
   GridConditions<Dim> conditions;

@@ -95,6 +95,64 @@ static void check_cracks(const Model<2>& m) {
   }
 }
 
+// "tips": "auto" makes an end point a crack tip when there is material ahead of it (a particle
+// within one cell of the point one cell ahead along the crack): the end of a crack cut in from a
+// free edge is no tip.
+static void resolve_tips(Model<2>& m) {
+  const double h = m.grid.h;
+  for (auto& c : m.cracks) {
+    if (c.tips != "auto") continue;
+    for (int end = 0; end < 2; ++end) {
+      const crack::TipFrame f = crack::tip_frame(c, end);
+      const Vec<2> ahead = f.tip + h * f.e1;
+      c.tip[end] = false;
+      for (std::size_t p = 0; p < m.particles.size() && !c.tip[end]; ++p)
+        c.tip[end] = (m.particles.x[p] - ahead).norm() <= h;
+    }
+  }
+}
+
+// The scene key "crack_tips": J-integral contour and output interval (default: global_interval).
+static crack::TipSettings read_crack_tips(const json& scene, const Model<2>& m, double time_scale) {
+  const ObjectReader r(scene["crack_tips"], "crack_tips", {"interval", "contour", "radius", "points", "volume_term"});
+  if (m.cracks.empty()) throw SceneError("crack_tips", "the scene declares no cracks (key \"cracks\")");
+  crack::TipSettings s;
+  s.interval = r.positive_or("interval", m.output.global_interval, time_scale);
+  const std::string shape = r.string_or("contour", "circle");
+  if (shape == "rectangle") s.contour = crack::TipSettings::Contour::Rectangle;
+  else if (shape != "circle") throw SceneError(r.at("contour"), "unknown contour \"" + shape + "\"; valid: circle, rectangle");
+  s.radius = r.positive_or("radius", 2.0);
+  if (s.radius < 1.0)
+    throw SceneError(r.at("radius"), "at least 1 cell (the contour must reach past the tip's own cell; default 2)");
+  s.points = r.integer_or("points", 16, 16, 100000);
+  if (r.has("volume_term")) {
+    if (!r["volume_term"].is_boolean()) throw SceneError(r.at("volume_term"), "expected true or false");
+    s.volume_term = r["volume_term"].get<bool>();
+  }
+  // Every contour, with the nodes it interpolates from, must lie inside the grid.
+  const double h = m.grid.h;
+  const double extent = s.radius * h * (s.contour == crack::TipSettings::Contour::Circle ? 1.0 : std::sqrt(2.0)) + h;
+  bool any = false;
+  for (const auto& c : m.cracks)
+    for (int end = 0; end < 2; ++end) {
+      if (!c.tip[end]) continue;
+      any = true;
+      const Vec<2> x = crack::tip_frame(c, end).tip;
+      if ((x.array() - extent < m.grid.origin.array()).any() || (x.array() + extent > m.grid.upper().array()).any())
+        throw SceneError("crack_tips.radius", "the contour around the " + std::string(end ? "end" : "start") +
+                                                  " tip of crack '" + c.name + "' leaves the grid; enlarge the grid");
+      for (std::size_t p = 0; p < m.particles.size(); ++p)
+        if ((m.particles.x[p] - x).norm() <= extent) {
+          double g, nu;
+          if (!m.materials[m.particles.material[p]]->isotropic_elastic(g, nu))
+            throw SceneError("crack_tips", "crack '" + c.name + "': K from J needs an isotropic elastic material at its tips");
+          break;
+        }
+    }
+  if (!any) throw SceneError("crack_tips", "no crack has a tip (every end lies outside the material, or \"tips\": \"none\")");
+  return s;
+}
+
 json load_scene_file(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw SceneError(file.string(), "cannot open the scene file");
@@ -114,7 +172,7 @@ int scene_dimension(const json& scene) {
 template <int Dim>
 Model<Dim> build_model(const json& scene) {
   ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "grid", "mpm", "materials",
-                               "bodies", "loads", "cracks", "damping", "time", "output", "checks"});
+                               "bodies", "loads", "cracks", "crack_tips", "damping", "time", "output", "checks"});
   if (top.has("method") && top.string("method") != "mpm")  // peridynamics: libmpm/pd/pd_scene.cpp
     throw SceneError("method", "build_model reads MPM scenes only (\"method\": \"mpm\")");
   register_builtin_materials();
@@ -313,6 +371,7 @@ Model<Dim> build_model(const json& scene) {
     } else {
       m.cracks = crack::parse_cracks(scene["cracks"], "cracks", L);
       check_cracks(m);
+      resolve_tips(m);
     }
   }
 
@@ -490,6 +549,12 @@ Model<Dim> build_model(const json& scene) {
     } else {
       m.output.global_interval = m.output.interval / 10;
     }
+  }
+  if (top.has("crack_tips")) {
+    if constexpr (Dim == 3)
+      throw SceneError("crack_tips", "crack-tip parameters are computed for 2D cracks only");
+    else
+      m.crack_tips = read_crack_tips(scene, m, units.factor(Quantity::Time));
   }
   // Bodies that share grid nodes with very different mass per particle make the node's effective
   // wave speed exceed the material estimate; linear shape functions then need a smaller CFL

@@ -9,6 +9,7 @@
 
 #include "libmpm/material/linear_elastic.hpp"
 #include "libmpm/solver/crack_fields.hpp"
+#include "libmpm/solver/crack_tip_eval.hpp"
 #include "libmpm/solver/parallel.hpp"
 #include "libmpm/solver/stencil.hpp"
 
@@ -42,6 +43,22 @@ class MpmStepper final : public Stepper<Dim> {
         return "step " + std::to_string(step_) + ": " + std::to_string(o) +
                " particle-node pair(s) needed a fifth velocity field at a node (more than two cracks meet there, or "
                "one line crosses three cracks); they used the node's ordinary field";
+    }
+    return {};
+  }
+
+  std::vector<crack::TipRecord> crack_tip_parameters(const crack::TipSettings& ts) override {
+    if constexpr (Dim == 2) {
+      if (!cf_) return {};
+      // A particle's acceleration in the last step: Task 5's nodal accelerations, each node's from
+      // the field the particle uses there.
+      return evaluate_crack_tips<SF>(m_, ts, [&](std::size_t p) {
+        St s;
+        s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
+        Vec<2> a = Vec<2>::Zero();
+        s.for_each_weight([&](int64_t n, double w) { a += w * cf_->kin(n, cf_->field_of(p, n, node_position(n))).a; });
+        return a;
+      });
     }
     return {};
   }

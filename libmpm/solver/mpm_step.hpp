@@ -4,6 +4,9 @@
 #include <memory>
 #include <string>
 
+#include <vector>
+
+#include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/model/model.hpp"
 
 namespace cleave {
@@ -39,6 +42,8 @@ class Stepper {
   // A message for the log (empty when there is none), e.g. a node that needed more velocity
   // fields than it holds.
   virtual std::string take_warning() { return {}; }
+  // J and K at every crack tip of a 2D cracked model, from the current state (empty otherwise).
+  virtual std::vector<crack::TipRecord> crack_tip_parameters(const crack::TipSettings&) { return {}; }
   // Restores counters when resuming from a checkpoint.
   virtual void restore(double time, long step, double external_work) = 0;
 };

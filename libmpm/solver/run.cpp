@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "libmpm/core/error.hpp"
@@ -71,6 +72,8 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
   const bool cracks = !m.cracks.empty();
   io::PvdIndex crack_pvd(out / "cracks.pvd");
   const fs::path csv_path = out / "global.csv";
+  const fs::path tips_path = out / "crack_tips.csv";
+  const bool tips = cracks && m.crack_tips.has_value();
   const fs::path ck_path = out / "checkpoint.bin";
   if (opt.resume) {
     ck = io::read_checkpoint<Dim>(ck_path, m);
@@ -84,16 +87,28 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
       crack_pvd.truncate_after(ck.time);
     }
     io::CsvSeries::truncate_after(csv_path, ck.time);
+    io::CsvSeries::truncate_after(tips_path, ck.time);
   } else {
     // A fresh run replaces the outputs of an earlier one in the same directory.
     for (const auto& e : fs::directory_iterator(out)) {
       const std::string n = e.path().filename().string();
       if (((n.rfind("particles_", 0) == 0 || n.rfind("cracks_", 0) == 0) && e.path().extension() == ".vtu") ||
-          n == "particles.pvd" || n == "cracks.pvd" || n == "global.csv" || n == "checkpoint.bin" || n == "run.json")
+          n == "particles.pvd" || n == "cracks.pvd" || n == "global.csv" || n == "checkpoint.bin" || n == "run.json" ||
+          n == "crack_tips.csv")
         fs::remove(e.path());
     }
   }
   io::CsvSeries csv(csv_path, global_columns<Dim>(), opt.resume);
+  // crack_tips.csv: rows every crack_tips.interval (k * interval, so a resumed run finds its next
+  // row time from the checkpoint time alone).
+  std::optional<io::CsvSeries> tip_csv;
+  double next_tip_time = 0.0;
+  if (tips) {
+    tip_csv.emplace(tips_path, std::vector<std::string>{"time", "crack", "tip", "x", "y", "J1", "J2", "KI", "KII"},
+                    opt.resume);
+    const double iv = m.crack_tips->interval;
+    next_tip_time = opt.resume ? (std::floor(ck.time / iv + 1e-9) + 1.0) * iv : 0.0;
+  }
   write_status(out, "running", "", stepper->step_count(), stepper->time());
 
   const double dt = m.dt;
@@ -107,7 +122,8 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
     pvd.write();
     if (cracks) {
       const std::string cname = frame_name("cracks", ck.next_frame);
-      io::write_vtu(out / cname, io::crack_point_set(m.cracks));
+      io::write_vtu(out / cname, tips ? io::crack_point_set(m.cracks, stepper->crack_tip_parameters(*m.crack_tips))
+                                      : io::crack_point_set(m.cracks));
       crack_pvd.add(stepper->time(), cname);
       crack_pvd.write();
     }
@@ -130,6 +146,10 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
     if (scale > 0) sum.max_energy_drift = std::max(sum.max_energy_drift, std::fabs(g.total() - e0) / scale);
     return g;
   };
+  auto record_tips = [&]() {
+    for (const auto& r : stepper->crack_tip_parameters(*m.crack_tips))
+      tip_csv->row({stepper->time(), double(r.crack), double(r.end), r.x.x(), r.x.y(), r.J1, r.J2, r.KI, r.KII});
+  };
   auto abort_run = [&](const std::string& msg) {
     write_frame();
     write_status(out, "aborted", msg, stepper->step_count(), stepper->time());
@@ -138,6 +158,10 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
 
   if (!opt.resume) {
     record_global();
+    if (tips) {
+      record_tips();
+      next_tip_time = m.crack_tips->interval;
+    }
     write_frame();
     ck.next_frame_time = m.output.interval;
     ck.next_global_time = m.output.global_interval;
@@ -178,6 +202,10 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
         msg << ") m, speed " << m.particles.v[fast].norm() << " m/s";
         abort_run(msg.str());
       }
+    }
+    if (tips && (t >= next_tip_time - eps || t >= m.end_time - eps)) {
+      record_tips();
+      while (next_tip_time <= t + eps) next_tip_time += m.crack_tips->interval;
     }
     if (t >= ck.next_frame_time - eps || t >= m.end_time - eps) {
       write_frame();

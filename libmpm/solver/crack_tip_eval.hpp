@@ -1,0 +1,173 @@
+// The dynamic J-integral and K_I / K_II at the crack tips of a 2D model (seed 000 §3, in the plane).
+//
+// Eq. 36: the particles around a tip extrapolate W (stress-work density), K (kinetic-energy
+// density), stress, displacement gradient and displacement to the nodes, separately for each
+// velocity field (a particle-node pair's field is the crack-crossing key of its connecting line,
+// as in the step). Eq. 37: a contour point takes each of its nodes' values from the field that a
+// particle at that point would use there. Eq. 38: midpoint rule over the contour. Eq. 33 adds the
+// volume term over the particles inside the contour, with their accelerations and velocity
+// gradients from the grid.
+//
+// Only particles within reach of a contour take part, and nothing here runs unless the scene asks
+// for crack-tip parameters, so scenes without "crack_tips" pay nothing.
+#pragma once
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "libmpm/crack/tip_parameters.hpp"
+#include "libmpm/model/model.hpp"
+#include "libmpm/solver/stencil.hpp"
+
+namespace cleave {
+
+namespace detail {
+// Mass-weighted nodal sums of one velocity field at one node (eq. 36).
+struct TipFieldSums {
+  double m = 0.0;
+  double energy = 0.0;     // m (W + K)
+  Vec<3> stress = Vec<3>::Zero();  // m (sxx, syy, sxy)
+  Mat<2> grad_u = Mat<2>::Zero();  // m du_i/dx_j
+  Vec<2> u = Vec<2>::Zero(), v = Vec<2>::Zero();
+};
+}  // namespace detail
+
+// accel(p): the acceleration of particle p in the last step (from the grid, with its own fields).
+template <class SF, class Accel>
+std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack::TipSettings& ts, Accel&& accel) {
+  using V = Vec<2>;
+  using St = Stencil<2, SF>;
+  const auto& P = m.particles;
+  const auto& G = m.grid;
+  const double h = G.h, inv_h = 1.0 / h;
+  const auto stride = G.strides();
+  const auto node_pos = [&](int64_t n) { return V(G.origin.x() + h * (n / stride[0]), G.origin.y() + h * (n % stride[0])); };
+  // Particles whose stencils reach a node that a contour point interpolates from, plus the
+  // particles feeding those nodes: (contour extent + 1 cell) + 2 x 1.5 cells, and a margin.
+  const double contour_extent = ts.radius * h * (ts.contour == crack::TipSettings::Contour::Circle ? 1.0 : std::sqrt(2.0));
+  const double reach = contour_extent + 4.5 * h;
+
+  std::vector<double> thickness(P.size(), 1.0);  // 2D masses are per body thickness
+  for (const auto& b : m.bodies)
+    for (std::size_t p = b.first; p < b.first + b.count; ++p) thickness[p] = b.thickness;
+
+  std::vector<crack::TipRecord> out;
+  for (const auto& c : m.cracks)
+    for (int end = 0; end < 2; ++end) {
+      if (!c.tip[end]) continue;
+      const crack::TipFrame f = crack::tip_frame(c, end);
+      crack::TipRecord rec;
+      rec.crack = c.id;
+      rec.end = end;
+      rec.x = f.tip;
+
+      // Eq. 36: nodal sums per (node, field key).
+      std::map<std::pair<int64_t, uint32_t>, detail::TipFieldSums> sums;
+      std::vector<std::size_t> inside;
+      std::size_t nearest = P.size();
+      double nearest_d = INFINITY;
+      for (std::size_t p = 0; p < P.size(); ++p) {
+        const double d = (P.x[p] - f.tip).norm();
+        if (d > reach) continue;
+        if (d < nearest_d) nearest_d = d, nearest = p;
+        if (ts.volume_term && crack::inside_contour(f, ts, h, P.x[p])) inside.push_back(p);
+        const auto& s = P.stress[p];
+        const auto& e = P.strain[p];
+        const Material<2>& mat = *m.materials[P.material[p]];
+        const double mp = P.mass[p];
+        const double energy = mat.strain_energy_density(s, e) + 0.5 * mp / P.volume0[p] * P.v[p].squaredNorm();
+        Mat<2> gu;  // small-strain displacement gradient: strain plus the integrated rotation
+        gu << e[0], e[3] - P.rotation[p], e[3] + P.rotation[p], e[1];
+        St st;
+        st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
+        st.for_each_weight([&](int64_t n, double w) {
+          if (w == 0.0) return;
+          const uint32_t key = crack::field_key(m.cracks, P.x[p], node_pos(n));
+          if (key == crack::kFieldKeyOverflow) return;
+          auto& a = sums[{n, key}];
+          const double mw = mp * w;
+          a.m += mw;
+          a.energy += mw * energy;
+          a.stress += mw * Vec<3>(s[0], s[1], s[3]);
+          a.grad_u += mw * gu;
+          a.u += mw * P.u[p];
+          a.v += mw * P.v[p];
+        });
+      }
+      if (nearest == P.size()) continue;  // no material at this tip
+
+      // Eq. 37: the field values a particle at x would see (bilinear weights of x's cell).
+      auto interpolate = [&](const V& x, detail::TipFieldSums& q) {
+        const double fx = (x.x() - G.origin.x()) * inv_h, fy = (x.y() - G.origin.y()) * inv_h;
+        const int i = static_cast<int>(std::floor(fx)), j = static_cast<int>(std::floor(fy));
+        if (i < 0 || j < 0 || i + 1 >= G.nodes[0] || j + 1 >= G.nodes[1]) return false;
+        const double rx = fx - i, ry = fy - j;
+        q = detail::TipFieldSums{};
+        double wsum = 0.0;
+        for (int a = 0; a < 2; ++a)
+          for (int b = 0; b < 2; ++b) {
+            const int64_t n = static_cast<int64_t>(i + a) * stride[0] + (j + b);
+            const double w = (a ? rx : 1.0 - rx) * (b ? ry : 1.0 - ry);
+            const auto it = sums.find({n, crack::field_key(m.cracks, x, node_pos(n))});
+            if (w == 0.0 || it == sums.end() || !(it->second.m > 0.0)) continue;
+            const auto& s = it->second;
+            const double k = w / s.m;
+            q.energy += k * s.energy, q.stress += k * s.stress, q.grad_u += k * s.grad_u, q.u += k * s.u;
+            wsum += w;
+          }
+        if (!(wsum > 0.0)) return false;  // outside the material
+        q.energy /= wsum, q.stress /= wsum, q.grad_u /= wsum, q.u /= wsum;
+        q.m = 1.0;
+        return true;
+      };
+
+      // Eqs. 38-39: J = sum [(W + K) n - (grad u)^T (sigma n)] dGamma, in global axes.
+      V J = V::Zero();
+      for (const auto& cp : crack::contour_points(c, end, ts, h)) {
+        detail::TipFieldSums q;
+        if (!interpolate(cp.x, q)) continue;
+        const V tn(q.stress[0] * cp.n.x() + q.stress[2] * cp.n.y(), q.stress[2] * cp.n.x() + q.stress[1] * cp.n.y());
+        J += cp.length * (q.energy * cp.n - q.grad_u.transpose() * tn);
+      }
+      // Eq. 33's volume term, sum m_p / b [(grad u)^T a - (grad v)^T v] over the particles inside
+      // (b the thickness: J is per unit length of crack front).
+      for (std::size_t p : inside) {
+        St st;
+        st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
+        Mat<2> gv = Mat<2>::Zero();
+        st.for_each([&](int64_t n, double, const V& g) {
+          const auto it = sums.find({n, crack::field_key(m.cracks, P.x[p], node_pos(n))});
+          if (it != sums.end() && it->second.m > 0.0) gv += (it->second.v / it->second.m) * g.transpose();
+        });
+        const auto& e = P.strain[p];
+        Mat<2> gu;
+        gu << e[0], e[3] - P.rotation[p], e[3] + P.rotation[p], e[1];
+        J += P.mass[p] / thickness[p] * (gu.transpose() * accel(p) - gv.transpose() * P.v[p]);
+      }
+      rec.J1 = J.dot(f.e1);
+      rec.J2 = J.dot(f.e2);
+
+      // Near-tip openings at the contour radius behind the tip: each face's field, probed just off
+      // the crack line on its side.
+      const crack::CrackPoint cp = crack::point_behind_tip(c, end, ts.radius * h);
+      detail::TipFieldSums up, down;
+      const double probe = 1e-3 * h;
+      if (interpolate(cp.x + probe * cp.normal, up) && interpolate(cp.x - probe * cp.normal, down)) {
+        const V d = up.u - down.u;
+        rec.cod_I = d.dot(f.e2);
+        rec.cod_II = d.dot(f.e1);
+      }
+      double mu = 0.0, nu = 0.0;
+      if (!m.materials[P.material[nearest]]->isotropic_elastic(mu, nu))
+        throw std::runtime_error("crack '" + c.name + "': K from J needs an isotropic elastic material at the tip");
+      const auto k = crack::stress_intensity(rec.J1, rec.cod_I, rec.cod_II, mu, crack::kolosov_kappa(m.analysis, nu));
+      rec.KI = k.KI;
+      rec.KII = k.KII;
+      out.push_back(rec);
+    }
+  return out;
+}
+
+}  // namespace cleave
