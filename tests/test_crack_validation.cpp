@@ -133,12 +133,18 @@ TEST_P(CollidingDisks, ConserveMomentum) {
   EXPECT_LT(r.momentum_error, 1e-10);
 }
 
-// MISSES (docs/validation.md): the criterion, crack faces never cross (minimum signed gap
-// >= -1 % of a cell), measured on the tracked crack surfaces: -12 % (volume detection) and -15 %
-// (displacement detection) of a cell. Disabled until mended; run with --gtest_also_run_disabled_tests.
-TEST_P(CollidingDisks, DISABLED_CrackFacesNeverCross) {
+// The criterion: crack faces never cross, i.e. the minimum signed normal gap between the
+// tracked crack surfaces (crack.above / crack.below, what cracks_*.vtu shows as the faces) over the
+// run is >= -1 % of a cell. Contact detection therefore also reads these surfaces
+// (CrackFields::flag_closing_surfaces): with the node-averaged indicators alone the faces near the
+// left crack's tips crossed by 12 % (volume) and 15 % (displacement) of a cell while closing after
+// the wide opening (docs/validation.md).
+TEST_P(CollidingDisks, CrackFacesNeverCross) {
   const auto [law, detection] = GetParam();
-  EXPECT_GE(collide(law, detection).min_gap, -0.01 * 1e-3);
+  const Collision r = collide(law, detection);
+  std::printf("colliding disks, %s contact, %s detection: min crack-face gap %.4f cells\n", law, detection,
+              r.min_gap / 1e-3);
+  EXPECT_GE(r.min_gap, -0.01 * 1e-3);
 }
 
 INSTANTIATE_TEST_SUITE_P(LawsAndDetections, CollidingDisks,
@@ -174,9 +180,13 @@ std::vector<Vec<2>> opening_history(double vx, double omega) {
   return out;
 }
 
-// MISSES (docs/validation.md): the tracked crack surfaces of the moving plate differ from those of
-// the plate at rest by up to 76 % of the peak opening (the tips and a cell-crossing ripple of the
-// surfaces); disabled until the surface tracking is mended. Run with --gtest_also_run_disabled_tests.
+// MISSES (docs/validation.md): the tracked crack openings of the moving plate differ from those of
+// the plate at rest by up to 76 % of the peak opening. Not a frame error: with the plate cut right
+// through (no tips) moving and resting plates agree to 0.1 % in the particle displacements, with the
+// 12 mm crack they differ by 18 % (translation alone), and at rest a shift of plate and crack by half
+// a cell already changes them by 9 %: the effective crack length depends on where the tips sit in
+// their cells. Disabled until the tip discretisation is mended. Run with
+// --gtest_also_run_disabled_tests.
 TEST(CrackMotion, DISABLED_RigidlyMovingAndRotatingBodyOpensItsCrackAsAtRest) {
   const auto rest = opening_history(0, 0);
   const auto moving = opening_history(500, 0.01);  // 3 mm and 3.4 degrees over the run

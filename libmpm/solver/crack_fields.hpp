@@ -206,6 +206,7 @@ class CrackFields {
   // are also added to the forces as Δp/dt so that Task 5 moves the particles consistently.
   void contact(double dt, bool back_compute = false) {
     const double cell_volume = G_.h * G_.h;
+    flag_closing_surfaces(dt);
     for (std::size_t b = 0; b < block_node_.size(); ++b) {
       const int64_t n = block_node_[b];
       const int nf = 1 + block_nslots_[b];
@@ -240,6 +241,9 @@ class CrackFields {
             const V ua = (xa < 0 ? disp0_[b] : disp_[xa]) / ma, ub = (xb < 0 ? disp0_[b] : disp_[xb]) / mb;
             touching = approach > 0.0 && (ua - ub + dt * dv).dot(nrm) > 0.0;
           }
+          // The node carries a crack point whose faces touch or would cross within the step
+          // (flag_closing_surfaces): contact, whatever the node-averaged indicator says.
+          if (!touching && approach > 0.0 && closing_[b * cracks_.size() + crack]) touching = true;
           if (!touching) continue;
           // Stick: both fields take the centre-of-mass velocity (eq. 13).
           const V stick = (ma * pb - mb * pa) / (ma + mb);
@@ -288,6 +292,37 @@ class CrackFields {
         c.below[i] += dt * vb[i];
       }
       c.update_extent();
+    }
+  }
+
+  // Contact detection from the tracked crack surfaces. Both node-based indicators (seed 002's
+  // relative nodal volume, seed 000's mass-weighted nodal displacements) average the opening over a
+  // node's support, 2-3 cells of crack: where the opening varies on the cell scale (near a tip,
+  // closing after a wide opening) a node reads "apart" (V_rel < v_sep, or a positive mean
+  // displacement gap) while the faces beside it already touch, and they cross there (-12 % to -16 %
+  // of a cell in the colliding-disk scene, docs/validation.md). The tracked surfaces give the local
+  // opening: a crack point whose normal opening, predicted to the end of the step with the side
+  // velocities it moves with (move_cracks), is <= 0 flags the nodes that move its two surfaces, and
+  // contact() treats approaching fields at those nodes as touching.
+  void flag_closing_surfaces(double dt) {
+    const std::size_t nc = cracks_.size();
+    closing_.assign(block_node_.size() * nc, 0);
+    for (std::size_t ci = 0; ci < nc; ++ci) {
+      const crack::Crack2D& c = cracks_[ci];
+      if (c.contact_law == "none") continue;
+      for (std::size_t i = 0; i < c.points.size(); ++i) {
+        const V nl = left_normal(c, i);
+        const V vcm = cm_velocity(c.points[i]);
+        const V va = side_velocity(c.above[i], c.points[i] + kProbe * G_.h * nl, vcm);
+        const V vb = side_velocity(c.below[i], c.points[i] - kProbe * G_.h * nl, vcm);
+        if ((c.above[i] - c.below[i] + dt * (va - vb)).dot(nl) > 0.0) continue;
+        auto flag = [&](int64_t n, double) {
+          const int32_t b = node_block_[n];
+          if (b >= 0) closing_[b * nc + ci] = 1;
+        };
+        linear_nodes(c.above[i], flag);
+        linear_nodes(c.below[i], flag);
+      }
     }
   }
 
@@ -610,6 +645,7 @@ class CrackFields {
   std::vector<double> mass_, volume_;
   std::vector<V> momentum_, force_, disp_, normal_, disp0_;
   std::vector<NodeKinematics<2>> xkin_;
+  std::vector<uint8_t> closing_;  // per block and crack: a crack point's faces close (contact())
   long overflow_ = 0;
 };
 
