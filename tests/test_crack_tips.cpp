@@ -457,7 +457,7 @@ TEST(CrackTipFreund, DynamicKIFollowsTheClosedFormBeforeReflections) {
 // load ramped over one wave transit). Infinite-plate K_I = sigma sqrt(pi a) cos^2 beta,
 // K_II = sigma sqrt(pi a) sin beta cos beta; the finite width raises both by about 1.7 %
 // (Feddersen, sqrt(sec(pi a / W)) for a / W = 1/12).
-std::vector<crack::TipRecord> inclined_crack(double beta_deg, double a_cells) {
+std::vector<crack::TipRecord> inclined_crack(double beta_deg, double a_cells, std::vector<double> extra_radii = {}) {
   const double h = 1.0, a = a_cells * h, L = 12 * a;  // mm
   const double beta = beta_deg * kPi / 180, E = 1e9, nu = 0.3, rho = 1000;
   const double cd = std::sqrt(E / (rho * (1 - nu * nu)));
@@ -480,7 +480,20 @@ std::vector<crack::TipRecord> inclined_crack(double beta_deg, double a_cells) {
   auto st = make_stepper<2>(m);
   while (st->time() < m.end_time - 1e-9 * m.dt) EXPECT_FALSE(st->step());
   crack::TipSettings ts;
+  for (double r : extra_radii) {
+    crack::TipSettings t2;
+    t2.radius = r;
+    for (const auto& t : st->crack_tip_parameters(t2))
+      std::printf("  radius %.0f tip %d: J1 %.5g J2 %.5g cod_I %.4g cod_II %.4g ratio %.4f KI %.4g KII %.4g\n", r, t.end, t.J1,
+                  t.J2, t.cod_I, t.cod_II, t.cod_II / t.cod_I, t.KI, t.KII);
+  }
   return st->crack_tip_parameters(ts);
+}
+
+TEST(Dbg, DISABLED_Mixed) {
+  const double a = std::getenv("ACELLS") ? std::atof(std::getenv("ACELLS")) : 8;
+  const auto t = inclined_crack(std::getenv("BETA") ? std::atof(std::getenv("BETA")) : 30, a, {2, 3, 4});
+  std::printf("tan 30 = %.4f\n", std::tan(kPi / 6));
 }
 
 class MixedMode : public ::testing::TestWithParam<int> {};

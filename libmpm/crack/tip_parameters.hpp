@@ -67,7 +67,7 @@ struct TipRecord {
   int crack = 0, end = 0;  // crack id; 0 start / 1 end
   Vec<2> x = Vec<2>::Zero();
   double J1 = 0, J2 = 0, KI = 0, KII = 0;
-  double cod_I = 0, cod_II = 0;  // the openings that split K (at the contour radius behind the tip)
+  double cod_I = 0, cod_II = 0;  // the openings that split K (max(radius, 3 cells) behind the tip)
 };
 
 }  // namespace cleave::crack
