@@ -39,6 +39,8 @@ Commands:
             cracks.pvd + cracks_NNNNNN.vtu         crack paths, surfaces and opening (cracked
                                                    scenes only)
             global.csv                             energies, external work, momentum
+            crack_tips.csv                         J1, J2, KI, KII per crack tip (scenes with
+                                                   crack_tips)
             checkpoint.bin                         restart state at the last frame
             run.json                               status: running | complete | aborted
           Shows progress (step, simulated time, wall time, ETA) on stderr and a one-line
@@ -123,6 +125,14 @@ void print_check(const Model<Dim>& m) {
                   c.detection == crack::Crack2D::Detection::Volume ? "volume" : "displacement");
   std::printf("output: every %.6g s (%zu fields), global.csv every %.6g s\n", m.output.interval,
               m.output.fields.size(), m.output.global_interval);
+  if (m.crack_tips) {
+    int tips = 0;
+    for (const auto& c : m.cracks) tips += c.tip[0] + c.tip[1];
+    const auto& t = *m.crack_tips;
+    std::printf("crack tips: %d, J by %s on a %s of %.6g cells (%d points), crack_tips.csv every %.6g s\n", tips,
+                t.volume_term ? "eq. 33 (contour + volume)" : "eq. 32 (contour)",
+                t.contour == crack::TipSettings::Contour::Circle ? "circle" : "square", t.radius, t.points, t.interval);
+  }
 }
 
 template <int Dim>
