@@ -1,14 +1,22 @@
 // cleave-bench-crack: the cost of the crack machinery (seed 002 §3.5 reports ~10 %; target <= 5 %).
-// The DCB of data/scenes/dcb_crack.json refined to >= 100 000 particles (uGIMP, USAVG), stepped
-// with its crack and, alternately in the same process, without it; prints ns per particle-step of
-// each and their ratio (median over repetitions). Usage: cleave-bench-crack [--cell MM] [--steps N]
-// [--reps R]   (defaults: 0.25 mm cells = 230 400 particles, 40 steps, 5 repetitions).
+// The DCB of data/scenes/dcb_crack.json refined to >= 100 000 particles (uGIMP, USAVG), built twice
+// in one process, with its crack and without it, and stepped in alternating blocks (cracked first in
+// odd repetitions, uncracked first in even ones, so that a drift of the machine's load affects both
+// alike); prints ns per particle-step of each block, their ratio per repetition, and the median and
+// range of the ratios. Wall-clock time is the figure; printed beside it are the ratio of the process
+// CPU times (with one thread, insensitive to time slices lost to other processes on a shared
+// machine) and the ratio of the fastest block of each (the least disturbed by other processes).
+// Usage: cleave-bench-crack [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked]
+// (defaults: 0.25 mm cells = 230 400 particles, 40 steps per block, 5 repetitions, after 5 warm-up
+// steps of each model; --only steps one of the two, for profiling).
 #include <omp.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,17 +27,34 @@ using namespace cleave;
 
 namespace {
 
-double time_steps(nlohmann::json scene, bool cracked, int steps, std::size_t& particles) {
-  if (!cracked) scene.erase("cracks");
-  Model<2> m = build_model<2>(scene);
-  particles = m.particles.size();
-  auto st = make_stepper<2>(m);
-  for (int i = 0; i < 5; ++i) st->step();  // warm-up: first contacts, allocations
-  const auto t0 = std::chrono::steady_clock::now();
-  for (int i = 0; i < steps; ++i) st->step();
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return 1e9 * s / (double(steps) * double(particles));
+double cpu_seconds() {
+  timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
+
+Model<2> dcb(nlohmann::json scene, bool cracked) {
+  if (!cracked) scene.erase("cracks");
+  return build_model<2>(scene);
+}
+
+struct Run {
+  Model<2> model;
+  std::unique_ptr<Stepper<2>> stepper;
+  Run(const nlohmann::json& scene, bool cracked) : model(dcb(scene, cracked)) {
+    stepper = make_stepper<2>(model);
+    for (int i = 0; i < 5; ++i) stepper->step();  // warm-up: first contacts, allocations
+  }
+  // ns per particle-step of `steps` steps: wall clock and process CPU time.
+  std::pair<double, double> time(int steps) {
+    const double c0 = cpu_seconds();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < steps; ++i) stepper->step();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double c = cpu_seconds() - c0, per = 1e9 / (double(steps) * double(model.particles.size()));
+    return {s * per, c * per};
+  }
+};
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -41,13 +66,17 @@ double median(std::vector<double> v) {
 int main(int argc, char** argv) {
   double cell = 0.25;
   int steps = 40, reps = 5;
+  std::string only;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    bool ok = true;
     if (a == "--cell" && i + 1 < argc) cell = std::atof(argv[++i]);
     else if (a == "--steps" && i + 1 < argc) steps = std::atoi(argv[++i]);
     else if (a == "--reps" && i + 1 < argc) reps = std::atoi(argv[++i]);
-    else {
-      std::fprintf(stderr, "usage: cleave-bench-crack [--cell MM] [--steps N] [--reps R]\n");
+    else if (a == "--only" && i + 1 < argc) only = argv[++i];
+    else ok = false;
+    if (!ok || (!only.empty() && only != "cracked" && only != "uncracked")) {
+      std::fprintf(stderr, "usage: cleave-bench-crack [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked]\n");
       return a == "--help" ? 0 : 2;
     }
   }
@@ -55,15 +84,31 @@ int main(int argc, char** argv) {
   scene["grid"]["cell_size"] = cell;
   scene["mpm"]["shape_function"] = "ugimp";
   scene["cracks"][0]["segment_length"] = cell;
-  std::vector<double> with, without, ratio;
-  std::size_t n = 0;
-  for (int r = 0; r < reps; ++r) {
-    const double a = time_steps(scene, true, steps, n), b = time_steps(scene, false, steps, n);
-    with.push_back(a), without.push_back(b), ratio.push_back(a / b);
-    std::printf("rep %d: cracked %.1f ns/particle-step, uncracked %.1f, ratio %.3f\n", r + 1, a, b, a / b);
+  if (!only.empty()) {
+    Run r(scene, only == "cracked");
+    for (int i = 0; i < reps; ++i)
+      std::printf("rep %d: %s %.1f ns/particle-step\n", i + 1, only.c_str(), r.time(steps).first);
+    return 0;
   }
+  Run cracked(scene, true), uncracked(scene, false);
+  std::vector<double> with, without, ratio, cpu_ratio;
+  for (int i = 0; i < reps; ++i) {
+    std::pair<double, double> a, b;
+    if (i % 2 == 0) a = cracked.time(steps), b = uncracked.time(steps);
+    else b = uncracked.time(steps), a = cracked.time(steps);
+    with.push_back(a.first), without.push_back(b.first), ratio.push_back(a.first / b.first);
+    cpu_ratio.push_back(a.second / b.second);
+    std::printf("rep %d: cracked %.1f ns/particle-step, uncracked %.1f, ratio %.3f (CPU time %.3f)\n", i + 1, a.first,
+                b.first, a.first / b.first, a.second / b.second);
+  }
+  const double best_with = *std::min_element(with.begin(), with.end()),
+               best_without = *std::min_element(without.begin(), without.end());
   std::printf("DCB %zu particles, %d threads, %d steps x %d reps (median): cracked %.1f ns, uncracked %.1f ns, "
-              "crack overhead %+.1f %%\n",
-              n, omp_get_max_threads(), steps, reps, median(with), median(without), 100 * (median(ratio) - 1));
+              "crack overhead %+.1f %% (per-rep range %+.1f ... %+.1f %%; CPU time %+.1f %%; best blocks %.1f / %.1f ns "
+              "= %+.1f %%)\n",
+              cracked.model.particles.size(), omp_get_max_threads(), steps, reps, median(with), median(without),
+              100 * (median(ratio) - 1), 100 * (*std::min_element(ratio.begin(), ratio.end()) - 1),
+              100 * (*std::max_element(ratio.begin(), ratio.end()) - 1), 100 * (median(cpu_ratio) - 1), best_with,
+              best_without, 100 * (best_with / best_without - 1));
   return 0;
 }

@@ -22,6 +22,7 @@
 
 #include "libmpm/crack/crack2d.hpp"
 #include "libmpm/model/model.hpp"
+#include "libmpm/solver/parallel.hpp"
 #include "libmpm/solver/stencil.hpp"
 
 namespace cleave {
@@ -61,26 +62,53 @@ class CrackFields {
   }
 
   bool active() const { return !cracks_.empty(); }
+  // One flag per particle: near a crack at the start of the step (set by the stepper's strip-order
+  // pass with near_test(), between prepare_index() and prepare_fields()).
   const uint8_t* near_flags() const { return near_flag_.data(); }
+  uint8_t* near_flags() { return near_flag_.data(); }
   const std::vector<int32_t>& near_list() const { return near_; }
-  // True when the set of near particles changed in the last prepare() (the stepper's strip order
-  // of far particles must then be rebuilt).
-  bool near_set_changed() const { return near_changed_; }
+  // The stencil of near particle k (index into near_list()), evaluated once in prepare_fields(): every pass
+  // of a step evaluates the shape functions at the start-of-step positions (a pass that moves the
+  // particles does so after its last use of them), so one evaluation serves the whole step.
+  const St& stencil(std::size_t k) const { return near_st_[k]; }
   std::size_t block_count() const { return block_node_.size(); }
 
   // --- Task 1 preamble: spatial index, near particles, line crossing (Appendix A), field slots ----
-  void prepare() {
+  // In three parts: prepare_index(); then the near flags, set from near_test() in the stepper's
+  // strip-order pass, which streams every particle's position anyway (a pass of its own here cost
+  // about 2 % of a step at 230 000 particles); then prepare_fields(whether a flag changed).
+  void prepare_index() {
     for (auto& c : cracks_) c.update_extent();
     build_index();
-    find_near_particles();
+  }
+  // Is a particle at x near a crack: in a cell with index entries? The index's cell box first, so
+  // that most particles cost a few comparisons and no look-up.
+  auto near_test() const {
+    // Everything by value: the caller's flag stores (uint8_t) could otherwise alias these members
+    // and force reloads in its loop.
+    return [ox = G_.origin.x(), oy = G_.origin.y(), inv_h = inv_h_, lo0 = box_lo_[0], hi0 = box_hi_[0],
+            lo1 = box_lo_[1], hi1 = box_hi_[1], ny = static_cast<int64_t>(cells_[1]),
+            head = cell_head_.data()](const V& x) -> uint8_t {
+      const double fx = (x.x() - ox) * inv_h, fy = (x.y() - oy) * inv_h;
+      if (!(fx >= lo0 && fx < hi0 && fy >= lo1 && fy < hi1)) return 0;
+      return head[static_cast<int64_t>(fx) * ny + static_cast<int64_t>(fy)] >= 0;  // = cell_of's cell
+    };
+  }
+  void prepare_fields(bool flags_changed) {
+    if (flags_changed) collect_near_particles();
     classify_pairs();
     allocate_fields();
   }
 
   // Calls f(node, x, w, g) for every stencil node of near particle k (index into near_list()):
   // x < 0 means the node's ordinary field (the stepper's arrays), else the extra slot index.
+  // (Most near particles use only ordinary fields: they take a path with x = -1 known to the compiler.)
   template <class F>
   void for_each_pair(std::size_t k, const St& s, F&& f) const {
+    if (!slot_any_[k]) {
+      s.for_each([&](int64_t n, double w, const V& g) { f(n, -1, w, g); });
+      return;
+    }
     const uint8_t* sl = &pair_slot_[k * N];
     int j = 0;
     s.for_each([&](int64_t n, double w, const V& g) {
@@ -90,6 +118,10 @@ class CrackFields {
   }
   template <class F>
   void for_each_pair_weight(std::size_t k, const St& s, F&& f) const {
+    if (!slot_any_[k]) {
+      s.for_each_weight([&](int64_t n, double w) { f(n, -1, w); });
+      return;
+    }
     const uint8_t* sl = &pair_slot_[k * N];
     int j = 0;
     s.for_each_weight([&](int64_t n, double w) {
@@ -339,6 +371,7 @@ class CrackFields {
 
   struct Entry {
     int32_t crack, seg_lo, seg_hi, next;
+    V lo, hi;  // bounding box of the range's vertices seg_lo .. seg_hi + 1
   };
 
   static V segment_normal(const crack::Crack2D& c, std::size_t s) {
@@ -367,6 +400,9 @@ class CrackFields {
     for (int64_t c : touched_) cell_head_[c] = -1;
     touched_.clear();
     entries_.clear();
+    box_lo_[0] = box_lo_[1] = 0.0;  // empty until a cell gets an entry
+    box_hi_[0] = box_hi_[1] = 0.0;
+    int bi0 = cells_[0], bi1 = -1, bj0 = cells_[1], bj1 = -1;
     const double grow = kReach * G_.h;
     for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
       const auto& pts = cracks_[ci].points;
@@ -376,35 +412,61 @@ class CrackFields {
         const int i1 = std::min(cells_[0] - 1, static_cast<int>(std::floor((hi.x() - G_.origin.x()) * inv_h_)));
         const int j0 = std::max(0, static_cast<int>(std::floor((lo.y() - G_.origin.y()) * inv_h_)));
         const int j1 = std::min(cells_[1] - 1, static_cast<int>(std::floor((hi.y() - G_.origin.y()) * inv_h_)));
+        if (i0 <= i1 && j0 <= j1) {
+          bi0 = std::min(bi0, i0), bi1 = std::max(bi1, i1);
+          bj0 = std::min(bj0, j0), bj1 = std::max(bj1, j1);
+        }
         for (int i = i0; i <= i1; ++i)
           for (int j = j0; j <= j1; ++j) {
             const int64_t cell = static_cast<int64_t>(i) * cells_[1] + j;
             int32_t e = cell_head_[cell];
             while (e >= 0 && entries_[e].crack != static_cast<int32_t>(ci)) e = entries_[e].next;
             if (e >= 0) {
-              entries_[e].seg_hi = static_cast<int32_t>(s);  // segments arrive in order
+              Entry& en = entries_[e];
+              // The box takes every vertex of the range, also those of segments that skip this cell.
+              for (std::size_t v = static_cast<std::size_t>(en.seg_hi) + 2; v <= s + 1; ++v)
+                en.lo = en.lo.cwiseMin(pts[v]), en.hi = en.hi.cwiseMax(pts[v]);
+              en.seg_hi = static_cast<int32_t>(s);  // segments arrive in order
             } else {
               if (cell_head_[cell] < 0) touched_.push_back(cell);
               entries_.push_back({static_cast<int32_t>(ci), static_cast<int32_t>(s), static_cast<int32_t>(s),
-                                  cell_head_[cell]});
+                                  cell_head_[cell], pts[s].cwiseMin(pts[s + 1]), pts[s].cwiseMax(pts[s + 1])});
               cell_head_[cell] = static_cast<int32_t>(entries_.size() - 1);
             }
           }
       }
     }
+    if (bi0 <= bi1) {
+      box_lo_[0] = bi0, box_hi_[0] = bi1 + 1.0;
+      box_lo_[1] = bj0, box_hi_[1] = bj1 + 1.0;
+    }
   }
 
-  void find_near_particles() {
-    prev_near_.swap(near_);
-    near_.clear();
+  // The list of near particles, in particle order, from the flags (only when a flag changed): in
+  // parallel over fixed chunks, each filled at the offset of a prefix sum of the chunk counts.
+  void collect_near_particles() {
     const std::size_t np = P_.size();
-    for (std::size_t p = 0; p < np; ++p) {
-      const int64_t c = cell_of(P_.x[p]);
-      const uint8_t f = c >= 0 && cell_head_[c] >= 0;
-      near_flag_[p] = f;
-      if (f) near_.push_back(static_cast<int32_t>(p));
+    constexpr std::size_t kChunk = 8192;
+    const std::size_t chunks = (np + kChunk - 1) / kChunk;
+    chunk_begin_.assign(chunks + 1, 0);
+    const bool par = worth_parallel(np);
+#pragma omp parallel for schedule(static) if (par)
+    for (std::size_t c = 0; c < chunks; ++c) {
+      std::size_t count = 0;
+      const std::size_t end = std::min(np, (c + 1) * kChunk);
+      for (std::size_t p = c * kChunk; p < end; ++p) count += near_flag_[p];
+      chunk_begin_[c + 1] = count;
     }
-    near_changed_ = near_ != prev_near_;
+    for (std::size_t c = 0; c < chunks; ++c) chunk_begin_[c + 1] += chunk_begin_[c];
+    near_.resize(chunk_begin_[chunks]);
+#pragma omp parallel for schedule(static) if (par)
+    for (std::size_t c = 0; c < chunks; ++c) {
+      if (chunk_begin_[c + 1] == chunk_begin_[c]) continue;
+      std::size_t k = chunk_begin_[c];
+      const std::size_t end = std::min(np, (c + 1) * kChunk);
+      for (std::size_t p = c * kChunk; p < end; ++p)
+        if (near_flag_[p]) near_[k++] = static_cast<int32_t>(p);
+    }
   }
 
   // Field key of the line particle xp -> node xn: one code per crossed crack,
@@ -413,6 +475,10 @@ class CrackFields {
   uint32_t classify(const V& xp, const V& xn, int32_t seg[2]) const {
     const int64_t cell = cell_of(xp);
     if (cell < 0) return 0;
+    return classify_in_cell(cell, xp, xn, seg);
+  }
+  // The same for a particle known to lie in `cell` (>= 0).
+  uint32_t classify_in_cell(int64_t cell, const V& xp, const V& xn, int32_t seg[2]) const {
     uint32_t code[2] = {0, 0};
     int count = 0;
     for (int32_t e = cell_head_[cell]; e >= 0; e = entries_[e].next) {
@@ -436,29 +502,119 @@ class CrackFields {
     return code[0] | (code[1] << 16);
   }
 
+  // An index entry narrowed for one particle: segments lo..hi of the crack (none when lo > hi).
+  struct SubRange {
+    int32_t crack, lo, hi;
+  };
+  static constexpr int kMaxSub = 8;  // entries per cell narrowed; a cell with more uses its full ranges
+
+  // classify_in_cell on narrowed ranges (same answers, see classify_pairs).
+  uint32_t classify_sub(const SubRange* sub, int nsub, const V& xp, const V& xn, int32_t seg[2]) const {
+    uint32_t code[2] = {0, 0};
+    int count = 0;
+    for (int e = 0; e < nsub; ++e) {
+      const SubRange& sr = sub[e];
+      if (sr.lo > sr.hi) continue;
+      const crack::Crack2D& c = cracks_[sr.crack];
+      if (!crack::extent_overlaps(c, xp, xn)) continue;  // Subtask 1
+      std::size_t s = 0;
+      const crack::Side side =
+          crack::polyline_crossing(c.points.data() + sr.lo, static_cast<std::size_t>(sr.hi - sr.lo + 2), xp, xn, &s);
+      if (side == crack::Side::None) continue;
+      if (count == 2) return kOverflow;
+      code[count] = static_cast<uint32_t>(2 * sr.crack + (side == crack::Side::Below ? 1 : 0) + 1);
+      seg[count] = sr.lo + static_cast<int32_t>(s);
+      ++count;
+    }
+    if (count == 2 && code[1] < code[0]) {
+      std::swap(code[0], code[1]);
+      std::swap(seg[0], seg[1]);
+    }
+    return code[0] | (code[1] << 16);
+  }
+
+  // Keys of every pair of every near particle. Per particle, each index entry of its cell is first
+  // narrowed to the segments whose bounding box touches the closed box B spanned by the particle and
+  // its stencil nodes (an entry covers every segment within kReach cells of the cell, ~2 kReach + 2
+  // segments; B meets ~3). Exact: a segment apart from B cannot touch any particle-node line of the
+  // particle, nor can the end vertices that the narrowed range shares with such segments, so
+  // polyline_crossing's rules (crossing.hpp: a contact only at a vertex on the line, a range end
+  // treated as a tip) give the same side and segment on the narrowed range as on the entry's.
   void classify_pairs() {
     const std::size_t nn = near_.size();
     pair_key_.resize(nn * N);
     pair_seg_.resize(nn * N * 2);
+    near_st_.resize(nn);
+    key_any_.resize(nn);
 #pragma omp parallel for schedule(static) if (nn >= 512)
     for (std::size_t k = 0; k < nn; ++k) {
       const std::size_t p = static_cast<std::size_t>(near_[k]);
-      St s;
-      s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
+      const V xp = P_.x[p];
+      St& s = near_st_[k];
+      s.eval(G_, stride_, inv_h_, xp, P_.half_width[p]);
+      // The particle's cell and its first node's grid indices once (node_position's division per
+      // node was a large share of this loop); node j of the stencil is (i0 + j / K, j0 + j % K).
+      const int64_t cell = cell_of(xp);  // >= 0: a near particle's cell has index entries
+      const int64_t i0 = s.base / static_cast<int64_t>(stride_[0]), j0 = s.base % static_cast<int64_t>(stride_[0]);
+      // Node coordinates computed once: the box B must hold exactly the values classified.
+      double nx[St::K], ny[St::K];
+      for (int a = 0; a < St::K; ++a) {
+        const V xa = node_position(i0 + a, j0 + a);
+        nx[a] = xa.x(), ny[a] = xa.y();
+      }
+      double lo[2] = {xp.x(), xp.y()}, hi[2] = {xp.x(), xp.y()};
+      for (int a = 0; a < St::K; ++a) {
+        lo[0] = std::min(lo[0], nx[a]), hi[0] = std::max(hi[0], nx[a]);
+        lo[1] = std::min(lo[1], ny[a]), hi[1] = std::max(hi[1], ny[a]);
+      }
+      auto meets = [&](const V& a, const V& b) {  // the closed box [min(a, b), max(a, b)] meets B
+        return std::max(a.x(), b.x()) >= lo[0] && std::min(a.x(), b.x()) <= hi[0] &&
+               std::max(a.y(), b.y()) >= lo[1] && std::min(a.y(), b.y()) <= hi[1];
+      };
+      SubRange sub[kMaxSub];
+      int nsub = 0;
+      bool any = false;
+      for (int32_t e = cell_head_[cell]; e >= 0; e = entries_[e].next) {
+        if (nsub == kMaxSub) {
+          nsub = -1;
+          any = true;
+          break;
+        }
+        const Entry& en = entries_[e];
+        int32_t a = en.seg_lo, b = en.seg_hi;
+        if (!meets(en.lo, en.hi)) {
+          a = b + 1;  // no segment of the entry comes near B
+        } else {
+          const auto& pts = cracks_[en.crack].points;
+          while (a <= b && !meets(pts[a], pts[a + 1])) ++a;
+          while (b >= a && !meets(pts[b], pts[b + 1])) --b;
+        }
+        any = any || a <= b;
+        sub[nsub++] = {en.crack, a, b};
+      }
+      key_any_[k] = any;
+      if (!any) {  // every key 0
+        std::fill_n(&pair_key_[k * N], N, 0u);
+        continue;
+      }
       int j = 0;
-      s.for_each_weight([&](int64_t n, double w) {
-        const std::size_t q = k * N + j++;
+      s.for_each_weight([&](int64_t, double w) {
+        const std::size_t q = k * N + j;
+        const V xn(nx[j / St::K], ny[j % St::K]);
+        ++j;
         pair_key_[q] = 0;
         if (w == 0.0) return;  // no contribution: no field needed
-        pair_key_[q] = classify(P_.x[p], node_position(n), &pair_seg_[2 * q]);
+        pair_key_[q] = nsub >= 0 ? classify_sub(sub, nsub, xp, xn, &pair_seg_[2 * q])
+                                 : classify_in_cell(cell, xp, xn, &pair_seg_[2 * q]);
       });
     }
   }
 
   V node_position(int64_t n) const {
     const int64_t i = n / stride_[0], j = n % stride_[0];
-    return V(G_.origin.x() + G_.h * i, G_.origin.y() + G_.h * j);
+    return node_position(i, j);
   }
+  V node_position(int64_t i, int64_t j) const { return V(G_.origin.x() + G_.h * i, G_.origin.y() + G_.h * j); }
 
   // Serial, in particle order: deterministic slot numbering for any thread count.
   void allocate_fields() {
@@ -466,15 +622,15 @@ class CrackFields {
     block_node_.clear();
     block_nslots_.clear();
     block_key_.clear();
-    std::vector<V> normals;  // per slot, two (one per code of the key)
+    std::vector<V>& normals = normals_next_;  // per slot, two (one per code of the key)
+    normals.clear();
     const std::size_t nn = near_.size();
     pair_slot_.assign(nn * N, 0);
+    slot_any_.assign(nn, 0);
     for (std::size_t k = 0; k < nn; ++k) {
-      const std::size_t p = static_cast<std::size_t>(near_[k]);
-      St s;
-      s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
+      if (!key_any_[k]) continue;  // every key 0: every pair uses the ordinary field
       int j = 0;
-      s.for_each_weight([&](int64_t n, double) {
+      near_st_[k].for_each_weight([&](int64_t n, double) {
         const std::size_t q = k * N + j++;
         const uint32_t key = pair_key_[q];
         if (key == 0) return;
@@ -502,6 +658,7 @@ class CrackFields {
           block_key_[b * kExtra + slot] = key;
         }
         pair_slot_[q] = static_cast<uint8_t>(slot + 1);
+        slot_any_[k] = 1;
         for (int c = 0; c < 2; ++c) {
           const uint32_t code = (key >> (16 * c)) & 0xffffu;
           if (!code) continue;
@@ -627,12 +784,16 @@ class CrackFields {
   std::vector<double> area0_;
 
   std::vector<int32_t> cell_head_;
+  double box_lo_[2] = {0.0, 0.0}, box_hi_[2] = {0.0, 0.0};  // cells [lo, hi) holding all index entries
   std::vector<int64_t> touched_;
   std::vector<Entry> entries_;
 
   std::vector<uint8_t> near_flag_;
-  std::vector<int32_t> near_, prev_near_;
-  bool near_changed_ = true;
+  std::vector<int32_t> near_;
+  std::vector<std::size_t> chunk_begin_;
+  std::vector<St> near_st_;
+  std::vector<uint8_t> key_any_;   // per near particle: does a key differ from 0 (set by classify_pairs)
+  std::vector<uint8_t> slot_any_;  // per near particle: does a pair use an extra field (allocate_fields)
 
   std::vector<uint32_t> pair_key_;
   std::vector<int32_t> pair_seg_;
@@ -643,7 +804,7 @@ class CrackFields {
   std::vector<uint8_t> block_nslots_;
   std::vector<uint32_t> block_key_;
   std::vector<double> mass_, volume_;
-  std::vector<V> momentum_, force_, disp_, normal_, disp0_;
+  std::vector<V> momentum_, force_, disp_, normal_, disp0_, normals_next_;
   std::vector<NodeKinematics<2>> xkin_;
   std::vector<uint8_t> closing_;  // per block and crack: a crack point's faces close (contact())
   long overflow_ = 0;

@@ -81,16 +81,17 @@ class MpmStepper final : public Stepper<Dim> {
       flush_denormals_on_all_threads();
       ftz_threads_ = omp_get_max_threads();
     }
-    const uint8_t* skip = nullptr;
-    bool skip_changed = false;
+    skip_ = nullptr;
+    bool ordered = false;
     if constexpr (Dim == 2)
-      if (cf_) {
-        cf_->prepare();  // Task 1, line crossing: fields of the particles near cracks
-        skip = cf_->near_flags();
-        skip_changed = cf_->near_set_changed();
+      if (cf_) {  // Task 1, line crossing: fields of the particles near cracks
+        cf_->prepare_index();
+        const bool near_changed = order_.build(P_, G_, inv_h_, cf_->near_flags(), cf_->near_test());
+        cf_->prepare_fields(near_changed);
+        skip_ = cf_->near_flags();
+        ordered = true;
       }
-    skip_ = skip;
-    order_.build(P_, G_, inv_h_, skip, skip_changed);
+    if (!ordered) order_.build(P_, G_, inv_h_);
     const double traction_power_before = traction_power();
     const double dts = dt * traits_.fraction;
 
@@ -154,12 +155,8 @@ class MpmStepper final : public Stepper<Dim> {
     });
     if constexpr (Dim == 2)
       if (cf_) {
-        const auto& near = cf_->near_list();
-        for (std::size_t k = 0; k < near.size(); ++k) {
-          St s;
-          s.eval(G_, stride_, inv_h_, P_.x[near[k]], P_.half_width[near[k]]);
-          cf_->extrapolate(k, s);
-        }
+        const std::size_t nn = cf_->near_list().size();
+        for (std::size_t k = 0; k < nn; ++k) cf_->extrapolate(k, cf_->stencil(k));
       }
   }
 
@@ -172,6 +169,33 @@ class MpmStepper final : public Stepper<Dim> {
 #pragma omp parallel for schedule(static) if (worth_parallel(np))
     for (std::size_t p = 0; p < np; ++p)
       if (!skip || !skip[p]) body(p);
+  }
+
+  // A pass over the particles near cracks (k indexes the crack module's near list): gather(k) reads
+  // nodes and writes only its own particle, scatter(k) adds into nodes, and no gather reads what a
+  // scatter writes. The gathers run first, in parallel when there are enough (the usual 8 192: with
+  // 2 threads on a loaded 2-core machine, ~6 500 near particles in parallel cost more than they
+  // saved, through the three extra fork/joins per step), then the scatters
+  // serially in list order, so every node sums its contributions in the same order whatever the
+  // thread count. (One code path for any thread count: fusing the two loops when serial would let
+  // the compiler contract multiply-adds differently and break 1-vs-2-thread bit identity.)
+  template <class Gather, class Scatter>
+  void near_pass(Gather&& gather, Scatter&& scatter) {
+    if constexpr (Dim == 2) {
+      const std::size_t nn = cf_->near_list().size();
+#pragma omp parallel for schedule(static) if (worth_parallel(nn))
+      for (std::size_t k = 0; k < nn; ++k) gather(k);
+      for (std::size_t k = 0; k < nn; ++k) scatter(k);
+    }
+  }
+
+  // Subtask 3: the constitutive update, without a virtual call when every material is linear elastic.
+  void update_stress(std::size_t p, const Mat<Dim>& L, double dts) {
+    const Material<Dim>* mat = m_.materials[P_.material[p]].get();
+    if (all_linear_elastic_)  // devirtualised: inlined into the calling loop
+      static_cast<const LinearElastic<Dim>*>(mat)->update_inline(P_.stress[p], P_.strain[p], L, dts);
+    else
+      mat->update(P_.stress[p], P_.strain[p], L, dts);
   }
 
   // Contact at multi-field nodes whenever momenta were (re)computed (Tasks 2 and 6c).
@@ -193,11 +217,7 @@ class MpmStepper final : public Stepper<Dim> {
         Mat<Dim> L = Mat<Dim>::Zero();
         s.for_each([&](int64_t n, double, const Vec<Dim>& g) { L.noalias() += kin_[n].v * g.transpose(); });
         if constexpr (Dim == 2) P_.rotation[p] += 0.5 * (L(1, 0) - L(0, 1)) * dts;  // spin, for the renderer
-        const Material<Dim>* mat = m_.materials[P_.material[p]].get();
-        if (all_linear_elastic_)  // devirtualised: inlined into this loop
-          static_cast<const LinearElastic<Dim>*>(mat)->update_inline(P_.stress[p], P_.strain[p], L, dts);
-        else
-          mat->update(P_.stress[p], P_.strain[p], L, dts);
+        update_stress(p, L, dts);
       }
       if constexpr (scatter_force) {
         const Sym<Dim> vs = P_.volume0[p] * P_.stress[p];
@@ -217,29 +237,30 @@ class MpmStepper final : public Stepper<Dim> {
     if constexpr (Dim == 2)
       if (cf_) {  // particles near cracks: the same with each pair's velocity field
         const auto& near = cf_->near_list();
-        for (std::size_t k = 0; k < near.size(); ++k) {
+        auto gather = [&](std::size_t k) {  // (stencils: the start-of-step ones, cached)
           const std::size_t p = static_cast<std::size_t>(near[k]);
-          St s;
-          s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
           if constexpr (update) {
             Mat<Dim> L = Mat<Dim>::Zero();
-            cf_->for_each_pair(k, s, [&](int64_t n, int32_t x, double, const Vec<Dim>& g) {
+            cf_->for_each_pair(k, cf_->stencil(k), [&](int64_t n, int32_t x, double, const Vec<Dim>& g) {
               L.noalias() += cf_->kin(n, x).v * g.transpose();
             });
             P_.rotation[p] += 0.5 * (L(1, 0) - L(0, 1)) * dts;
-            m_.materials[P_.material[p]]->update(P_.stress[p], P_.strain[p], L, dts);
-          }
-          if constexpr (scatter_force) {
-            const Sym<Dim> vs = P_.volume0[p] * P_.stress[p];
-            cf_->for_each_pair(k, s, [&](int64_t n, int32_t x, double, const Vec<Dim>& g) {
-              cf_->force(n, x) -= sym_dot<Dim>(vs, g);
-            });
+            update_stress(p, L, dts);
           }
           if constexpr (move) {
             P_.x[p] += dx_[p];
             P_.u[p] += dx_[p];
           }
-        }
+        };
+        auto scatter = [&](std::size_t k) {
+          if constexpr (scatter_force) {
+            const Sym<Dim> vs = P_.volume0[near[k]] * P_.stress[near[k]];
+            cf_->for_each_pair(k, cf_->stencil(k), [&](int64_t n, int32_t x, double, const Vec<Dim>& g) {
+              cf_->force(n, x) -= sym_dot<Dim>(vs, g);
+            });
+          }
+        };
+        near_pass(gather, scatter);
       }
   }
 
@@ -346,24 +367,24 @@ class MpmStepper final : public Stepper<Dim> {
       if (cf_) {
         if (reextrapolate) cf_->clear_momenta();
         const auto& near = cf_->near_list();
-        for (std::size_t k = 0; k < near.size(); ++k) {
+        auto gather = [&](std::size_t k) {
           const std::size_t p = static_cast<std::size_t>(near[k]);
-          St s;
-          s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
           Vec<Dim> a = Vec<Dim>::Zero(), v = Vec<Dim>::Zero();
-          cf_->for_each_pair_weight(k, s, [&](int64_t n, int32_t x, double w) {
+          cf_->for_each_pair_weight(k, cf_->stencil(k), [&](int64_t n, int32_t x, double w) {
             const auto& kn = cf_->kin(n, x);
             a += kn.a * w;
             v += kn.v * w;
           });
           P_.v[p] += dt * a;
-          const Vec<Dim> dx = dt * v;
-          if (reextrapolate) {
-            const Vec<Dim> mv = P_.mass[p] * P_.v[p];
-            cf_->for_each_pair_weight(k, s, [&](int64_t n, int32_t x, double w) { cf_->momentum(n, x) += mv * w; });
-          }
-          finish(p, dx);
-        }
+          finish(p, dt * v);
+        };
+        auto scatter = [&](std::size_t k) {  // Task 6c
+          if (!reextrapolate) return;
+          const Vec<Dim> mv = P_.mass[near[k]] * P_.v[near[k]];
+          cf_->for_each_pair_weight(k, cf_->stencil(k),
+                                    [&](int64_t n, int32_t x, double w) { cf_->momentum(n, x) += mv * w; });
+        };
+        near_pass(gather, scatter);
       }
     const long b = bad.load();
     if (b == std::numeric_limits<long>::max()) return {};

@@ -7,6 +7,9 @@
 #endif
 
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "libmpm/model/grid.hpp"
@@ -58,24 +61,39 @@ class StripOrder {
  public:
   static constexpr int kWidth = 4;
 
-  // skip (optional, one flag per particle): particles left out of the order (the crack module
-  // handles particles near cracks itself); pass skip_changed = true when the flags changed.
-  void build(const Particles<Dim>& P, const GridGeometry<Dim>& G, double inv_h, const uint8_t* skip = nullptr,
-             bool skip_changed = false) {
+  // skip (optional, one flag per particle, with skip_test): particles left out of the order (the
+  // crack module handles particles near cracks itself). The flags are set afresh here, skip[p] =
+  // skip_test(x_p), in the same pass over the positions that finds the strips. Returns true when a
+  // skip flag changed.
+  template <class SkipTest = std::nullptr_t>
+  bool build(const Particles<Dim>& P, const GridGeometry<Dim>& G, double inv_h, uint8_t* skip = nullptr,
+             const SkipTest& skip_test = nullptr) {
+    constexpr bool kSkip = !std::is_same_v<SkipTest, std::nullptr_t>;
     const int strips = (G.nodes[0] + kWidth - 1) / kWidth;
     const std::size_t np = P.size();
     // Particles rarely change strip from one step to the next: re-sort only when one did.
-    bool changed = skip_changed || strip_of_.size() != np || begin_.size() != static_cast<std::size_t>(strips + 1);
+    bool changed = strip_of_.size() != np || begin_.size() != static_cast<std::size_t>(strips + 1);
+    bool skip_changed = false;
     strip_of_.resize(np);
-#pragma omp parallel for schedule(static) if (worth_parallel(np)) reduction(|| : changed)
+    const Vec<Dim>* x = P.x.data();
+    int* strip_of = strip_of_.data();
+    const double origin = G.origin[0];
+#pragma omp parallel for schedule(static) if (worth_parallel(np)) reduction(|| : changed, skip_changed) \
+    firstprivate(skip_test)
     for (std::size_t p = 0; p < np; ++p) {
-      const int cell = static_cast<int>((P.x[p][0] - G.origin[0]) * inv_h);  // x > origin: truncation = floor
+      const int cell = static_cast<int>((x[p][0] - origin) * inv_h);  // x > origin: truncation = floor
       const int strip = std::clamp(cell / kWidth, 0, strips - 1);
-      changed = changed || strip != strip_of_[p];
-      strip_of_[p] = strip;
+      changed = changed || strip != strip_of[p];
+      strip_of[p] = strip;
+      if constexpr (kSkip) {
+        const uint8_t f = skip_test(x[p]);
+        skip_changed = skip_changed || f != skip[p];
+        skip[p] = f;
+      }
     }
     parallel_ = worth_parallel(np);
-    if (!changed) return;
+    if (!kSkip) skip = nullptr;
+    if (!(changed || skip_changed)) return false;
     begin_.assign(strips + 1, 0);
     for (std::size_t p = 0; p < np; ++p)
       if (!skip || !skip[p]) ++begin_[strip_of_[p] + 1];
@@ -84,6 +102,7 @@ class StripOrder {
     std::vector<std::size_t> fill(begin_.begin(), begin_.end() - 1);
     for (std::size_t p = 0; p < np; ++p)
       if (!skip || !skip[p]) order_[fill[strip_of_[p]]++] = static_cast<int32_t>(p);
+    return skip_changed;
   }
 
   // Calls body(p) for every particle; writes made by body to nodes never race.
