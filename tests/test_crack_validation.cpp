@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <array>
 #include <map>
 
+#include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/io/crack_output.hpp"
 #include "support.hpp"
 
@@ -155,18 +157,25 @@ INSTANTIATE_TEST_SUITE_P(LawsAndDetections, CollidingDisks,
                          [](const auto& info) { return std::string(info.param.first) + "_" + info.param.second; });
 
 // Validation 4: a cracked plate whose two halves are set moving apart (the crack opens, the
-// ligaments stretch) gives the same crack-relative opening when the whole plate also translates
-// and rotates rigidly. The two runs differ by the particles' different paths through the grid and
-// by the hypoelastic stress update's rotation error (O(rotation angle x stress)).
-std::vector<Vec<2>> opening_history(double vx, double omega) {
+// ligaments stretch, and after about 4 ms the crack closes again) gives the same crack-relative
+// result when the whole plate also translates and rotates rigidly. Both runs use the same time step
+// (the stable step depends on the particle speed: a CFL-chosen step would differ by 8 %).
+struct MotionRun {
+  std::vector<std::vector<Vec<2>>> opening;  // per step, per crack point: (normal, tangential)
+  // Per contour setting, per K sample, per tip (start, end): K_I and J1.
+  std::vector<std::vector<std::array<double, 2>>> KI, J;
+};
+
+MotionRun crack_motion(double h, double vx, double omega, double end_ms, int k_samples,
+                       const std::vector<crack::TipSettings>& ts) {
   json s = {{"units", {{"length", "mm"}, {"stress", "Pa"}, {"density", "g/cm3"}, {"velocity", "mm/s"},
                        {"time", "ms"}, {"inverse_time", "1/ms"}}},
             {"analysis", {{"type", "plane_stress"}, {"thickness", 1}}},
-            {"grid", {{"cell_size", 1}, {"min", {-30, -30}}, {"max", {30, 30}}}},
+            {"grid", {{"cell_size", h}, {"min", {-30, -30}}, {"max", {30, 30}}}},
             {"mpm", {{"shape_function", "ugimp"}, {"stress_update", "USAVG"}}},
             {"materials", {test::material("soft", 1e5, 0.33, 1.5)}},
-            {"cracks", {{{"name", "centre"}, {"from", {-6, 0}}, {"to", {6, 0}}, {"segment_length", 1}}}},
-            {"time", {{"end", 6}, {"cfl", 0.4}}}};
+            {"cracks", {{{"name", "centre"}, {"from", {-6, 0}}, {"to", {6, 0}}, {"segment_length", h}}}},
+            {"time", {{"end", end_ms}, {"dt", 0.03125 * h}}}};  // CFL 0.34 with the moving plate's speed
   const double w = omega;  // rad/ms about the plate centre
   s["bodies"] = {{{"name", "top"}, {"material", "soft"}, {"shape", {{"type", "rectangle"}, {"min", {-15, 0}}, {"max", {15, 15}}}},
                   {"velocity", {vx, 100}}, {"angular_velocity", w}, {"rotation_center", {0, 0}}},
@@ -174,31 +183,125 @@ std::vector<Vec<2>> opening_history(double vx, double omega) {
                   {"velocity", {vx, -100}}, {"angular_velocity", w}, {"rotation_center", {0, 0}}}};
   Model<2> m = build_model<2>(s);
   auto st = make_stepper<2>(m);
-  while (st->time() < m.end_time - 1e-9 * m.dt) EXPECT_FALSE(st->step());
-  std::vector<Vec<2>> out;
-  for (std::size_t i = 0; i < m.cracks[0].points.size(); ++i) out.push_back(io::crack_opening(m.cracks[0], i));
-  return out;
+  const long steps = std::lround(m.end_time / m.dt);
+  const long k_every = k_samples > 0 ? steps / k_samples : 0;
+  MotionRun r;
+  r.KI.resize(ts.size());
+  r.J.resize(ts.size());
+  for (long k = 1; k <= steps; ++k) {
+    EXPECT_FALSE(st->step());
+    std::vector<Vec<2>> o;
+    for (std::size_t i = 0; i < m.cracks[0].points.size(); ++i) o.push_back(io::crack_opening(m.cracks[0], i));
+    r.opening.push_back(std::move(o));
+    if (k_every > 0 && k % k_every == 0)
+      for (std::size_t c = 0; c < ts.size(); ++c) {
+        std::array<double, 2> KI{0, 0}, J{0, 0};
+        for (const auto& t : st->crack_tip_parameters(ts[c])) KI[t.end] = t.KI, J[t.end] = t.J1;
+        r.KI[c].push_back(KI);
+        r.J[c].push_back(J);
+      }
+  }
+  return r;
 }
 
-// MISSES (docs/validation.md): the tracked crack openings of the moving plate differ from those of
-// the plate at rest by up to 76 % of the peak opening. Not a frame error: with the plate cut right
-// through (no tips) moving and resting plates agree to 0.1 % in the particle displacements, with the
-// 12 mm crack they differ by 18 % (translation alone), and at rest a shift of plate and crack by half
-// a cell already changes them by 9 %: the effective crack length depends on where the tips sit in
-// their cells. Disabled until the tip discretisation is mended. Run with
-// --gtest_also_run_disabled_tests.
-TEST(CrackMotion, DISABLED_RigidlyMovingAndRotatingBodyOpensItsCrackAsAtRest) {
-  const auto rest = opening_history(0, 0);
-  const auto moving = opening_history(500, 0.01);  // 3 mm and 3.4 degrees over the run
-  double peak = 0, diff = 0;
-  for (std::size_t i = 0; i < rest.size(); ++i) {
-    peak = std::max(peak, rest[i].norm());
-    diff = std::max(diff, (moving[i] - rest[i]).norm());
+// Largest difference between two runs over the first `fraction` of the history (all crack points,
+// tips included), relative to the first run's peak over the same window.
+struct MotionDifference {
+  double peak_opening = 0, opening = 0;  // opening: max over steps and crack points of |Δ(n, t)|
+  double peak_K = 0, K = 0;              // K_I at both tips, over the samples
+  double peak_J = 0, J = 0;
+};
+
+MotionDifference motion_difference(const MotionRun& rest, const MotionRun& moving, double fraction = 1.0,
+                                   std::size_t c = 0) {
+  MotionDifference d;
+  const auto upto = [&](std::size_t n) { return static_cast<std::size_t>(std::lround(fraction * n)); };
+  for (std::size_t k = 0; k < upto(rest.opening.size()); ++k)
+    for (std::size_t i = 0; i < rest.opening[k].size(); ++i) {
+      d.peak_opening = std::max(d.peak_opening, rest.opening[k][i].norm());
+      d.opening = std::max(d.opening, (moving.opening[k][i] - rest.opening[k][i]).norm());
+    }
+  if (c < rest.KI.size())
+    for (std::size_t k = 0; k < upto(rest.KI[c].size()); ++k)
+      for (int e = 0; e < 2; ++e) {
+        d.peak_K = std::max(d.peak_K, std::fabs(rest.KI[c][k][e]));
+        d.K = std::max(d.K, std::fabs(moving.KI[c][k][e] - rest.KI[c][k][e]));
+        d.peak_J = std::max(d.peak_J, std::fabs(rest.J[c][k][e]));
+        d.J = std::max(d.J, std::fabs(moving.J[c][k][e] - rest.J[c][k][e]));
+      }
+  return d;
+}
+
+// The tolerance. Which particle-node lines a tip cuts depends on where it sits in its cell, so the
+// discrete crack's effective tip is uncertain by about half a cell, δa = h/2, and the moving
+// crack's tips sweep through the cells while the resting crack's stay put. For an opening profile
+// w ∝ sqrt(a² − x²) (peak ∝ a) a shift δa changes w by a δa / sqrt(a² − x²); at the last crack point
+// before a tip (x = a − h) that is δw / w_peak = δa / sqrt(2 a h) = sqrt(h / (8 a)): 14.4 % at
+// h = 1 mm, a = 6 mm, shrinking as sqrt(h). The convergence study (DISABLED_ConvergenceStudy,
+// docs/validation.md) finds 8.3 / 6.1 / 5.3 % at 1 / 0.5 / 0.25 mm over the opening phase (translation
+// alone 8.6 / 8.2 / 5.4 %), under the bound at every cell size, though converging more slowly (order
+// about 0.33). K_I and J are not compared: their differences stall at 6-7 % (eq. 33, 2-cell contour)
+// against the effective-tip estimate h / (4a) = 1 % at 0.25 mm (docs/validation.md).
+double opening_tolerance(double h, double a) { return std::sqrt(h / (8 * a)); }
+
+// Opening phase, 0-4 ms (the crack opens to its peak and starts to close; its faces stay at least
+// 0.08 mm apart behind the tips at every cell size, so crack contact never acts). 1 mm cells.
+TEST(CrackMotion, RigidlyMovingAndRotatingBodyOpensItsCrackAsAtRest) {
+  const double h = 1.0, a = 6.0;
+  const auto rest = crack_motion(h, 0, 0, 4, 0, {});
+  const auto moving = crack_motion(h, 500, 0.01, 4, 0, {});  // 2 mm and 2.3 degrees over the run
+  const MotionDifference d = motion_difference(rest, moving);
+  std::printf("moving/rotating cracked plate, 0-4 ms: peak opening %.4f mm, max difference %.2f %% (bound %.2f %%)\n",
+              d.peak_opening * 1e3, 100 * d.opening / d.peak_opening, 100 * opening_tolerance(h, a));
+  ASSERT_GT(d.peak_opening, 0.1e-3);
+  EXPECT_LT(d.opening / d.peak_opening, opening_tolerance(h, a));
+}
+
+// MISS (docs/validation.md): the whole 6 ms, through the closing phase where crack contact acts. At
+// 1 mm the difference is 12.2 % (under its 14.4 % bound) but at 0.5 mm 17.8 % against 10.2 % (at
+// 0.25 mm 8.3 % against 7.2 %): the
+// volume contact detection reads nodal volumes, which depend on where the crack lies relative to the
+// nodes (on a node row at rest, across the rows when rotated); the resting 1 mm crack's faces stop
+// 0.1 mm apart from 4.5 ms on. Without contact the 0.5 mm difference is 7.3 %.
+TEST(CrackMotion, DISABLED_RigidlyMovingAndRotatingBodyClosesItsCrackAsAtRest) {
+  const double h = 0.5, a = 6.0;
+  const auto rest = crack_motion(h, 0, 0, 6, 0, {});
+  const auto moving = crack_motion(h, 500, 0.01, 6, 0, {});
+  const MotionDifference d = motion_difference(rest, moving);
+  std::printf("moving/rotating cracked plate, 0-6 ms: peak opening %.4f mm, max difference %.2f %% (bound %.2f %%)\n",
+              d.peak_opening * 1e3, 100 * d.opening / d.peak_opening, 100 * opening_tolerance(h, a));
+  EXPECT_LT(d.opening / d.peak_opening, opening_tolerance(h, a));
+}
+
+// The convergence study behind the tolerance: moving vs resting plate at 1, 0.5 and 0.25 mm cells
+// over 6 ms, openings every step (over 0-4 ms and 0-6 ms), K_I and J1 at both tips every 0.25 ms with
+// three contour settings. Prints the table; asserts nothing (about 3 minutes at 2 threads). Run with
+// --gtest_also_run_disabled_tests --gtest_filter='CrackMotion.DISABLED_ConvergenceStudy'.
+TEST(CrackMotion, DISABLED_ConvergenceStudy) {
+  std::vector<crack::TipSettings> ts(3);
+  ts[1].volume_term = true;
+  ts[2].volume_term = true, ts[2].radius = 4;
+  const char* names[3] = {"eq32 r2", "eq33 r2", "eq33 r4"};
+  for (double h : {1.0, 0.5, 0.25}) {
+    const auto rest = crack_motion(h, 0, 0, 6, 24, ts);
+    const auto trans = crack_motion(h, 500, 0, 6, 24, ts);
+    const auto both = crack_motion(h, 500, 0.01, 6, 24, ts);
+    for (const auto* mv : {&trans, &both}) {
+      const char* what = mv == &trans ? "translating" : "translating+rotating";
+      const MotionDifference d4 = motion_difference(rest, *mv, 4.0 / 6.0), d6 = motion_difference(rest, *mv);
+      std::printf("h %.2f mm, %-20s: opening 0-4 ms %.2f %%, 0-6 ms %.2f %% (bound %.2f %%)\n", h, what,
+                  100 * d4.opening / d4.peak_opening, 100 * d6.opening / d6.peak_opening,
+                  100 * opening_tolerance(h, 6.0));
+      for (std::size_t c = 0; c < ts.size(); ++c) {
+        const MotionDifference k4 = motion_difference(rest, *mv, 4.0 / 6.0, c), k6 = motion_difference(rest, *mv, 1.0, c);
+        std::printf("    %s: K_I peak %.4g Pa m^0.5, diff 0-4 ms %.2f %%, 0-6 ms %.2f %% | J1 diff 0-4 ms %.2f %%, "
+                    "0-6 ms %.2f %%\n",
+                    names[c], k6.peak_K, 100 * k4.K / k4.peak_K, 100 * k6.K / k6.peak_K, 100 * k4.J / k4.peak_J,
+                    100 * k6.J / k6.peak_J);
+      }
+      std::fflush(stdout);
+    }
   }
-  std::printf("moving/rotating cracked plate: peak opening %.4f mm, max difference %.4f mm (%.2f %%)\n", peak * 1e3,
-              diff * 1e3, 100 * diff / peak);
-  ASSERT_GT(peak, 0.1e-3);
-  EXPECT_LT(diff / peak, 0.05);
 }
 
 }  // namespace

@@ -305,14 +305,24 @@ class CrackFields {
 
   // Task 7 (eq. 32): crack particles move with the centre-of-mass nodal velocity; the surfaces
   // above and below move with the velocity field of their side. Uses the end-of-step momenta.
+  // At an interior crack tip (crack.tip[end], material ahead of it) the two faces meet: its surfaces
+  // stay at the crack point itself, so the tracked opening there is zero. Followed with the side
+  // fields instead, a tip's surfaces interpolate nodes whose fields belong to the crack flanks behind
+  // the tip (the tip's cell is cut only partly), and the tip "opened" by about 70 % of the interior
+  // opening in a plate at rest (docs/validation.md, 2D cracks item 4). A free end (an edge crack's
+  // mouth, no material ahead) keeps following its sides.
   void move_cracks(double dt) {
     for (auto& c : cracks_) {
       const std::size_t np = c.points.size();
       std::vector<V> vm(np), va(np), vb(np);
       for (std::size_t i = 0; i < np; ++i) {
-        const V nl = left_normal(c, i);
         const V vcm = cm_velocity(c.points[i]);
         vm[i] = vcm;
+        if (is_tip(c, i)) {
+          va[i] = vb[i] = vcm;
+          continue;
+        }
+        const V nl = left_normal(c, i);
         // The probes sit just off the crack line itself, not off the surfaces: a surface that has
         // moved across the line (faces pressed together) must keep following its own side's field.
         va[i] = side_velocity(c.above[i], c.points[i] + kProbe * G_.h * nl, vcm);
@@ -322,6 +332,7 @@ class CrackFields {
         c.points[i] += dt * vm[i];
         c.above[i] += dt * va[i];
         c.below[i] += dt * vb[i];
+        if (is_tip(c, i)) c.above[i] = c.below[i] = c.points[i];
       }
       c.update_extent();
     }
@@ -343,6 +354,7 @@ class CrackFields {
       const crack::Crack2D& c = cracks_[ci];
       if (c.contact_law == "none") continue;
       for (std::size_t i = 0; i < c.points.size(); ++i) {
+        if (is_tip(c, i)) continue;  // its faces meet by definition (move_cracks): no gap to close
         const V nl = left_normal(c, i);
         const V vcm = cm_velocity(c.points[i]);
         const V va = side_velocity(c.above[i], c.points[i] + kProbe * G_.h * nl, vcm);
@@ -377,6 +389,10 @@ class CrackFields {
   static V segment_normal(const crack::Crack2D& c, std::size_t s) {
     const V t = c.points[s + 1] - c.points[s];
     return V(t.y(), -t.x()) / t.norm();  // right of the crack direction: from above to below
+  }
+  // Is crack point i an interior crack tip (an end point with material ahead, crack.tip[end])?
+  static bool is_tip(const crack::Crack2D& c, std::size_t i) {
+    return (i == 0 && c.tip[0]) || (i + 1 == c.points.size() && c.tip[1]);
   }
   static V left_normal(const crack::Crack2D& c, std::size_t i) {
     V t = V::Zero();
