@@ -269,6 +269,8 @@ RunSummary run_pd(PdSystem<Dim>& m, const RunOptions& opt) {
     ck.next_tip_time = m.output.tip_interval;
     checkpoint();
   }
+  // ETA from the progress since this process started (ck.time moves on at every checkpoint).
+  const double t_start = solver.time();
   auto last_report = clock::now();
   while (solver.time() < m.end_time - eps) {
     solver.step();
@@ -303,7 +305,7 @@ RunSummary run_pd(PdSystem<Dim>& m, const RunOptions& opt) {
       p.time = t;
       p.end_time = m.end_time;
       p.wall_s = std::chrono::duration<double>(last_report - t0).count();
-      const double frac = (t - ck.time) / std::max(m.end_time - ck.time, 1e-300);
+      const double frac = (t - t_start) / std::max(m.end_time - t_start, 1e-300);
       p.eta_s = frac > 0 ? p.wall_s * (1.0 - frac) / frac : 0.0;
       opt.progress(p);
     }

@@ -168,6 +168,8 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
     checkpoint();
   }
 
+  // ETA from the progress since this process started (ck.time moves on at every checkpoint).
+  const double t_start = stepper->time();
   auto last_report = clock::now();
   while (stepper->time() < m.end_time - eps) {
     const StepProblem problem = stepper->step();
@@ -219,7 +221,7 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
       p.time = t;
       p.end_time = m.end_time;
       p.wall_s = std::chrono::duration<double>(last_report - t0).count();
-      const double frac = (t - ck.time) / std::max(m.end_time - ck.time, 1e-300);
+      const double frac = (t - t_start) / std::max(m.end_time - t_start, 1e-300);
       p.eta_s = frac > 0 ? p.wall_s * (1.0 - frac) / frac : 0.0;
       opt.progress(p);
     }
