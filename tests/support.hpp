@@ -23,4 +23,18 @@ inline StepProblem advance(Stepper<Dim>& s, long n) {
   return {};
 }
 
+// The DCB's load-point opening (data/scenes/dcb_crack.json): the mean y displacement of the first
+// particle column (x0 = 0.5 mm) of the upper arm minus that of the lower arm.
+inline double dcb_load_point_opening(const Particles<2>& P) {
+  double top = 0, bottom = 0;
+  int nt = 0, nb = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Vec<2> x0 = P.x[p] - P.u[p];
+    if (x0.x() > 1e-3) continue;
+    (x0.y() > 0 ? top : bottom) += P.u[p].y();
+    ++(x0.y() > 0 ? nt : nb);
+  }
+  return top / nt - bottom / nb;
+}
+
 }  // namespace cleave::test

@@ -289,17 +289,8 @@ DcbResult run_dcb(double a_mm, std::vector<double> radii) {
   Model<2> m = build_model<2>(s);
   auto st = make_stepper<2>(m);
   while (st->time() < m.end_time - 1e-9 * m.dt) EXPECT_FALSE(st->step());
-  double top = 0, bottom = 0;
-  int nt = 0, nb = 0;
-  const auto& P = m.particles;
-  for (std::size_t p = 0; p < P.size(); ++p) {
-    const Vec<2> x0 = P.x[p] - P.u[p];
-    if (x0.x() > 1e-3) continue;  // the first column (x0 = 0.5 mm)
-    (x0.y() > 0 ? top : bottom) += P.u[p].y();
-    ++(x0.y() > 0 ? nt : nb);
-  }
   DcbResult r;
-  r.compliance = (top / nt - bottom / nb) / 0.4e-3;
+  r.compliance = test::dcb_load_point_opening(m.particles) / 0.4e-3;
   for (double rad : radii) {
     crack::TipSettings ts;
     ts.radius = rad;

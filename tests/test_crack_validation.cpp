@@ -74,16 +74,7 @@ TEST(CrackDcb, StaticComplianceMatchesBeamTheoryWithShear) {
   Model<2> m = build_model<2>(scene("dcb_crack.json"));
   auto st = make_stepper<2>(m);
   while (st->time() < m.end_time - 1e-9 * m.dt) ASSERT_FALSE(st->step());
-  double top = 0, bottom = 0;
-  int nt = 0, nb = 0;
-  const auto& P = m.particles;
-  for (std::size_t p = 0; p < P.size(); ++p) {
-    const Vec<2> x0 = P.x[p] - P.u[p];
-    if (x0.x() > 1e-3) continue;  // the first column (x0 = 0.5 mm)
-    (x0.y() > 0 ? top : bottom) += P.u[p].y();
-    ++(x0.y() > 0 ? nt : nb);
-  }
-  const double opening = top / nt - bottom / nb;
+  const double opening = test::dcb_load_point_opening(m.particles);
   const double P_load = 0.4e-3, E = 1e5, nu = 0.33, G = E / (2 * (1 + nu)), b = 1e-3, h = 18e-3;
   const double a = 50e-3 + 0.64 * h;
   const double C_theory = 8 * a * a * a / (E * b * h * h * h) + 12 * a / (5 * G * b * h);
