@@ -275,6 +275,36 @@ TEST(CrackTipOutput, WritesCrackTipsCsvAndTipValuesOnTheCrackFrames) {
   for (const char* name : {"\"J1\"", "\"J2\"", "\"KI\"", "\"KII\""}) EXPECT_NE(text.find(name), std::string::npos) << name;
 }
 
+// A run stopped at its checkpoint and resumed writes the same crack_tips.csv as one uninterrupted run.
+TEST(CrackTipOutput, ResumedRunContinuesCrackTipsCsvExactly) {
+  const auto base = std::filesystem::path(CLEAVE_BINARY_DIR) / "test_out" / "crack_tips_resume";
+  std::filesystem::remove_all(base);
+  auto read = [](const std::filesystem::path& f) {
+    std::ifstream in(f);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  {
+    Model<2> m = build_model<2>(small_cracked_plate());
+    RunOptions opt;
+    opt.out = base / "whole";
+    run_model<2>(m, opt);
+  }
+  {
+    json half = small_cracked_plate();
+    half["time"]["end"] = 1;  // ms: stops at the frame (and checkpoint) of 1 ms
+    Model<2> m = build_model<2>(half);
+    RunOptions opt;
+    opt.out = base / "split";
+    run_model<2>(m, opt);
+    Model<2> m2 = build_model<2>(small_cracked_plate());
+    opt.resume = true;  // both parts share the default scene hash
+    run_model<2>(m2, opt);
+  }
+  const std::string whole = read(base / "whole" / "crack_tips.csv"), split = read(base / "split" / "crack_tips.csv");
+  EXPECT_FALSE(whole.empty());
+  EXPECT_EQ(split, whole);
+}
+
 // --- DCB (validation.md §3) ------------------------------------------------------------------
 
 struct DcbResult {
