@@ -116,13 +116,15 @@ Collision collide(const std::string& law, const std::string& detection) {
   return r;
 }
 
-class CollidingDisks : public ::testing::TestWithParam<std::pair<const char*, const char*>> {};
+// (law, detection); strings so that CTest names show the values rather than pointers.
+using LawDetection = std::pair<std::string, std::string>;
+class CollidingDisks : public ::testing::TestWithParam<LawDetection> {};
 
 TEST_P(CollidingDisks, ConserveMomentum) {
   const auto [law, detection] = GetParam();
   const Collision r = collide(law, detection);
-  std::printf("colliding disks, %s contact, %s detection: momentum error %.2e, min crack-face gap %.4f cells\n", law,
-              detection, r.momentum_error, r.min_gap / 1e-3);
+  std::printf("colliding disks, %s contact, %s detection: momentum error %.2e, min crack-face gap %.4f cells\n",
+              law.c_str(), detection.c_str(), r.momentum_error, r.min_gap / 1e-3);
   EXPECT_LT(r.momentum_error, 1e-10);
 }
 
@@ -135,17 +137,17 @@ TEST_P(CollidingDisks, ConserveMomentum) {
 TEST_P(CollidingDisks, CrackFacesNeverCross) {
   const auto [law, detection] = GetParam();
   const Collision r = collide(law, detection);
-  std::printf("colliding disks, %s contact, %s detection: min crack-face gap %.4f cells\n", law, detection,
-              r.min_gap / 1e-3);
+  std::printf("colliding disks, %s contact, %s detection: min crack-face gap %.4f cells\n", law.c_str(),
+              detection.c_str(), r.min_gap / 1e-3);
   EXPECT_GE(r.min_gap, -0.01 * 1e-3);
 }
 
 INSTANTIATE_TEST_SUITE_P(LawsAndDetections, CollidingDisks,
-                         ::testing::Values(std::pair{"stick", "volume"}, std::pair{"frictionless", "volume"},
-                                           std::pair{"friction", "volume"}, std::pair{"stick", "displacement"},
-                                           std::pair{"frictionless", "displacement"},
-                                           std::pair{"friction", "displacement"}),
-                         [](const auto& info) { return std::string(info.param.first) + "_" + info.param.second; });
+                         ::testing::Values(LawDetection{"stick", "volume"}, LawDetection{"frictionless", "volume"},
+                                           LawDetection{"friction", "volume"}, LawDetection{"stick", "displacement"},
+                                           LawDetection{"frictionless", "displacement"},
+                                           LawDetection{"friction", "displacement"}),
+                         [](const auto& info) { return info.param.first + "_" + info.param.second; });
 
 // Validation 4: a cracked plate whose two halves are set moving apart (the crack opens, the
 // ligaments stretch, and after about 4 ms the crack closes again) gives the same crack-relative
