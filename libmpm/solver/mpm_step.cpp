@@ -273,14 +273,31 @@ class MpmStepper final : public Stepper<Dim> {
         St s;
         s.eval(G_, stride_, inv_h_, face_centre(t, p), face_half_widths(t, p).data());
         const Vec<Dim> F = tr * t.face_area[j];
+        // The face point moves with the body: once a face on a node line has moved outwards, part of
+        // its weight falls on nodes without mass, whose forces are dropped (linear shape functions
+        // lost 4.6 % of a plate's load at a displacement of 0.046 cell). The force is shared among
+        // the nodes that carry mass, in proportion to their weights.
         if constexpr (Dim == 2)
           if (cf_ && skip_[p]) {  // near a crack: each node's field as seen from the particle
+            double wsum = 0.0;
             s.for_each_weight([&](int64_t n, double w) {
-              cf_->force(n, cf_->field_of(p, n, node_position(n))) += F * w;
+              if (cf_->mass(n, cf_->field_of(p, n, node_position(n))) > 0.0) wsum += w;
+            });
+            if (!(wsum > 0.0)) continue;
+            s.for_each_weight([&](int64_t n, double w) {
+              const int32_t x = cf_->field_of(p, n, node_position(n));
+              if (cf_->mass(n, x) > 0.0) cf_->force(n, x) += F * (w / wsum);
             });
             continue;
           }
-        s.for_each_weight([&](int64_t n, double w) { grid_.force[n] += F * w; });
+        double wsum = 0.0;
+        s.for_each_weight([&](int64_t n, double w) {
+          if (grid_.mass[n] > 0.0) wsum += w;
+        });
+        if (!(wsum > 0.0)) continue;
+        s.for_each_weight([&](int64_t n, double w) {
+          if (grid_.mass[n] > 0.0) grid_.force[n] += F * (w / wsum);
+        });
       }
     }
     const bool gravity = m_.gravity.squaredNorm() > 0.0;
