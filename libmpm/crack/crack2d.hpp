@@ -73,17 +73,38 @@ inline Side crack_crossing(const Crack2D& c, const Vec<2>& particle, const Vec<2
 // in ascending order (low 16 bits first); 0 when no crack is crossed, kFieldKeyOverflow when three
 // or more are. The same key the stepper's crack fields use (whole-crack scan, no spatial index).
 inline constexpr uint32_t kFieldKeyOverflow = 0xffffffffu;
-inline uint32_t field_key(const std::vector<Crack2D>& cracks, const Vec<2>& x, const Vec<2>& xn) {
+
+// Collects the crossings of one particle-node line into its field key (with the crossed segment of
+// each code): add() returns false when a third crack is crossed (the key is then kFieldKeyOverflow).
+struct FieldKeyBuilder {
   uint32_t code[2] = {0, 0};
+  int32_t seg[2] = {0, 0};
   int count = 0;
+  bool add(int crack, Side side, int32_t segment = 0) {
+    if (count == 2) return false;
+    code[count] = static_cast<uint32_t>(2 * crack + (side == Side::Below ? 1 : 0) + 1);
+    seg[count] = segment;
+    ++count;
+    return true;
+  }
+  // The key, codes in ascending order; seg_out (optional) receives the segments in the same order.
+  uint32_t key(int32_t* seg_out = nullptr) {
+    if (count == 2 && code[1] < code[0]) {
+      std::swap(code[0], code[1]);
+      std::swap(seg[0], seg[1]);
+    }
+    if (seg_out) seg_out[0] = seg[0], seg_out[1] = seg[1];
+    return code[0] | (code[1] << 16);
+  }
+};
+
+inline uint32_t field_key(const std::vector<Crack2D>& cracks, const Vec<2>& x, const Vec<2>& xn) {
+  FieldKeyBuilder b;
   for (const auto& c : cracks) {
     const Side side = crack_crossing(c, x, xn);
-    if (side == Side::None) continue;
-    if (count == 2) return kFieldKeyOverflow;
-    code[count++] = static_cast<uint32_t>(2 * c.id + (side == Side::Below ? 1 : 0) + 1);
+    if (side != Side::None && !b.add(c.id, side)) return kFieldKeyOverflow;
   }
-  if (count == 2 && code[1] < code[0]) std::swap(code[0], code[1]);
-  return code[0] | (code[1] << 16);
+  return b.key();
 }
 
 // Parses the scene key "cracks" (key_path is its scene path, normally "cracks"): an array of

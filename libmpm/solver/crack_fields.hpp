@@ -379,7 +379,7 @@ class CrackFields {
 
  private:
   static constexpr double kProbe = 1e-3;  // cells: how far above/below a surface its probe sits
-  static constexpr uint32_t kOverflow = 0xffffffffu;  // a line crossing three or more cracks
+  static constexpr uint32_t kOverflow = crack::kFieldKeyOverflow;  // a line crossing three or more cracks
 
   struct Entry {
     int32_t crack, seg_lo, seg_hi, next;
@@ -495,8 +495,7 @@ class CrackFields {
   }
   // The same for a particle known to lie in `cell` (>= 0).
   uint32_t classify_in_cell(int64_t cell, const V& xp, const V& xn, int32_t seg[2]) const {
-    uint32_t code[2] = {0, 0};
-    int count = 0;
+    crack::FieldKeyBuilder b;
     for (int32_t e = cell_head_[cell]; e >= 0; e = entries_[e].next) {
       const Entry& en = entries_[e];
       const crack::Crack2D& c = cracks_[en.crack];
@@ -505,17 +504,9 @@ class CrackFields {
       const crack::Side side =
           crack::polyline_crossing(c.points.data() + en.seg_lo, static_cast<std::size_t>(en.seg_hi - en.seg_lo + 2),
                                    xp, xn, &s);
-      if (side == crack::Side::None) continue;
-      if (count == 2) return kOverflow;
-      code[count] = static_cast<uint32_t>(2 * en.crack + (side == crack::Side::Below ? 1 : 0) + 1);
-      seg[count] = en.seg_lo + static_cast<int32_t>(s);
-      ++count;
+      if (side != crack::Side::None && !b.add(en.crack, side, en.seg_lo + static_cast<int32_t>(s))) return kOverflow;
     }
-    if (count == 2 && code[1] < code[0]) {
-      std::swap(code[0], code[1]);
-      std::swap(seg[0], seg[1]);
-    }
-    return code[0] | (code[1] << 16);
+    return b.key(seg);
   }
 
   // An index entry narrowed for one particle: segments lo..hi of the crack (none when lo > hi).
@@ -526,8 +517,7 @@ class CrackFields {
 
   // classify_in_cell on narrowed ranges (same answers, see classify_pairs).
   uint32_t classify_sub(const SubRange* sub, int nsub, const V& xp, const V& xn, int32_t seg[2]) const {
-    uint32_t code[2] = {0, 0};
-    int count = 0;
+    crack::FieldKeyBuilder b;
     for (int e = 0; e < nsub; ++e) {
       const SubRange& sr = sub[e];
       if (sr.lo > sr.hi) continue;
@@ -536,17 +526,9 @@ class CrackFields {
       std::size_t s = 0;
       const crack::Side side =
           crack::polyline_crossing(c.points.data() + sr.lo, static_cast<std::size_t>(sr.hi - sr.lo + 2), xp, xn, &s);
-      if (side == crack::Side::None) continue;
-      if (count == 2) return kOverflow;
-      code[count] = static_cast<uint32_t>(2 * sr.crack + (side == crack::Side::Below ? 1 : 0) + 1);
-      seg[count] = sr.lo + static_cast<int32_t>(s);
-      ++count;
+      if (side != crack::Side::None && !b.add(sr.crack, side, sr.lo + static_cast<int32_t>(s))) return kOverflow;
     }
-    if (count == 2 && code[1] < code[0]) {
-      std::swap(code[0], code[1]);
-      std::swap(seg[0], seg[1]);
-    }
-    return code[0] | (code[1] << 16);
+    return b.key(seg);
   }
 
   // Keys of every pair of every near particle. Per particle, each index entry of its cell is first

@@ -54,6 +54,13 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
   const double contour_extent = ts.radius * h * (ts.contour == crack::TipSettings::Contour::Circle ? 1.0 : std::sqrt(2.0));
   const double reach = contour_extent + 4.5 * h;
 
+  // Small-strain displacement gradient of particle p: its strain plus the integrated rotation.
+  const auto grad_u = [&](std::size_t p) {
+    const auto& e = P.strain[p];
+    Mat<2> g;
+    g << e[0], e[3] - P.rotation[p], e[3] + P.rotation[p], e[1];
+    return g;
+  };
   std::vector<double> thickness(P.size(), 1.0);  // 2D masses are per body thickness
   for (const auto& b : m.bodies)
     for (std::size_t p = b.first; p < b.first + b.count; ++p) thickness[p] = b.thickness;
@@ -83,8 +90,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         const Material<2>& mat = *m.materials[P.material[p]];
         const double mp = P.mass[p];
         const double energy = mat.strain_energy_density(s, e) + 0.5 * mp / P.volume0[p] * P.v[p].squaredNorm();
-        Mat<2> gu;  // small-strain displacement gradient: strain plus the integrated rotation
-        gu << e[0], e[3] - P.rotation[p], e[3] + P.rotation[p], e[1];
+        const Mat<2> gu = grad_u(p);
         St st;
         st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
         st.for_each_weight([&](int64_t n, double w) {
@@ -146,10 +152,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
           const auto it = sums.find({n, crack::field_key(m.cracks, P.x[p], node_pos(n))});
           if (it != sums.end() && it->second.m > 0.0) gv += (it->second.v / it->second.m) * g.transpose();
         });
-        const auto& e = P.strain[p];
-        Mat<2> gu;
-        gu << e[0], e[3] - P.rotation[p], e[3] + P.rotation[p], e[1];
-        J += P.mass[p] / thickness[p] * (gu.transpose() * accel(p) - gv.transpose() * P.v[p]);
+        J += P.mass[p] / thickness[p] * (grad_u(p).transpose() * accel(p) - gv.transpose() * P.v[p]);
       }
       rec.J1 = J.dot(f.e1);
       rec.J2 = J.dot(f.e2);
