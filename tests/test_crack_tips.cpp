@@ -193,6 +193,49 @@ TEST_P(ExactField, EvaluatorRecoversK) {
 INSTANTIATE_TEST_SUITE_P(CrackAngles, ExactField, ::testing::Values(0, 30, 45),
                          [](const auto& info) { return "deg" + std::to_string(info.param); });
 
+// Velocities enter J relative to the tip (which moves with the centre-of-mass velocity there), so a
+// uniform velocity added to every particle leaves J unchanged, with and without eq. 33's volume term:
+// a crack carried by a translating body has the J of the body at rest. (With absolute velocities the
+// contour's kinetic term changes by the integral of rho V.v n, which only eq. 33 cancels, and only
+// in the continuum.)
+TEST(CrackTipJ, IsUnchangedByAUniformVelocity) {
+  json s = {{"units", {{"length", "mm"}, {"stress", "Pa"}, {"density", "g/cm3"}}},
+            {"analysis", {{"type", "plane_strain"}}},
+            {"grid", {{"cell_size", 1}, {"min", {-25, -25}}, {"max", {25, 25}}}},
+            {"mpm", {{"shape_function", "linear"}}},
+            {"materials", {test::material("m", 1e5, 0.3, 1.5)}},
+            {"bodies", {{{"name", "plate"}, {"material", "m"}, {"shape", {{"type", "rectangle"}, {"min", {-20, -20}}, {"max", {20, 20}}}}}}},
+            {"cracks", {{{"name", "c"}, {"from", {-21, 0}}, {"to", {0.5, 0}}, {"segment_length", 0.5}}}},
+            {"time", {{"end", 1}}}};
+  Model<2> m = build_model<2>(s);
+  m.cracks[0].tip[0] = false;
+  const double mu = 1e5 / 2.6, nu = 0.3, lam = 2 * mu * nu / (1 - 2 * nu);
+  const KField f{1.0, 0.3, mu, nu};
+  auto& P = m.particles;
+  const Vec<2> tip(0.5e-3, 0.0);
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Mat<2> g = f.grad_u(P.x[p] - tip);
+    const double exx = g(0, 0), eyy = g(1, 1), exy = 0.5 * (g(0, 1) + g(1, 0)), tr = exx + eyy;
+    P.u[p] = f.u(P.x[p] - tip);
+    P.strain[p] << exx, eyy, 0, exy;
+    P.stress[p] << lam * tr + 2 * mu * exx, lam * tr + 2 * mu * eyy, lam * tr, 2 * mu * exy;
+    P.rotation[p] = 0.5 * (g(1, 0) - g(0, 1));
+  }
+  const auto J_with = [&](const Vec<2>& V, bool volume) {
+    for (std::size_t p = 0; p < P.size(); ++p)  // a non-uniform field (K of the order of W), plus V
+      P.v[p] = 5e-3 * Vec<2>(std::sin(300 * P.x[p].y()), std::cos(200 * P.x[p].x())) + V;
+    crack::TipSettings ts;
+    ts.volume_term = volume;
+    const auto t = evaluate_crack_tips<LinearShape>(m, ts, [&](std::size_t p) { return Vec<2>(0.1 * P.x[p].x(), 0.0); });
+    return t.at(0).J1;
+  };
+  for (bool volume : {false, true}) {
+    const double J0 = J_with(Vec<2>::Zero(), volume), J1 = J_with(Vec<2>(0.7, -0.4), volume);
+    std::printf("%s: J1 at rest %.6g, with a uniform velocity %.6g\n", volume ? "eq. 33" : "eq. 32", J0, J1);
+    EXPECT_NEAR(J1 / J0, 1.0, 1e-9);
+  }
+}
+
 // --- scene key and output files ------------------------------------------------------------------
 
 json small_cracked_plate() {
@@ -250,6 +293,26 @@ TEST(CrackTipScene, ReadsTheKeyAndRejectsBadValues) {
   s = small_cracked_plate();
   s["cracks"][0]["tips"] = "left";
   expect(s, "cracks[0].tips", "auto, both, start, end, none");
+}
+
+// A contour that encloses part of another crack gets a warning (J is not path-independent there);
+// the tip's own crack running into the contour does not.
+TEST(CrackTipScene, WarnsWhenAContourEnclosesAnotherCrack) {
+  EXPECT_TRUE(build_model<2>(small_cracked_plate()).warnings.empty());
+  json s = small_cracked_plate();
+  s["cracks"].push_back({{"name", "far"}, {"from", {8, -4}}, {"to", {8, 4}}, {"segment_length", 1}});
+  EXPECT_TRUE(build_model<2>(s).warnings.empty());
+  s["cracks"][1] = {{"name", "near"}, {"from", {1.5, -4}}, {"to", {1.5, 4}}, {"segment_length", 1}};
+  const Model<2> m = build_model<2>(s);
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_NE(m.warnings[0].find("tip of crack 'edge' encloses part of crack 'near'"), std::string::npos) << m.warnings[0];
+  // A crack that hooks back into its own tip's contour.
+  s = small_cracked_plate();
+  s["cracks"][0] = {{"name", "hook"}, {"points", {{-14, 0}, {0.5, 0}, {0.5, -0.6}, {-3, -0.6}}}};
+  s["cracks"][0]["tips"] = "end";
+  const Model<2> h = build_model<2>(s);
+  ASSERT_EQ(h.warnings.size(), 1u);
+  EXPECT_NE(h.warnings[0].find("crack 'hook' encloses part of crack 'hook'"), std::string::npos) << h.warnings[0];
 }
 
 TEST(CrackTipOutput, WritesCrackTipsCsvAndTipValuesOnTheCrackFrames) {

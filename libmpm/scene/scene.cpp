@@ -113,7 +113,48 @@ static void resolve_tips(Model<2>& m) {
 }
 
 // The scene key "crack_tips": J-integral contour and output interval (default: global_interval).
-static crack::TipSettings read_crack_tips(const json& scene, const Model<2>& m, double time_scale) {
+// The J-integral's path independence holds for a contour around one crack tip only: warn when a
+// contour encloses part of another crack (or of the same crack away from the tip's own segments),
+// sampling every segment at quarter cells.
+static void warn_contour_meets_cracks(const Model<2>& m, const crack::TipSettings& s, const crack::Crack2D& c, int end,
+                                      std::vector<std::string>& warnings) {
+  const double h = m.grid.h;
+  const crack::TipFrame f = crack::tip_frame(c, end);
+  const double reach = s.radius * h * std::sqrt(2.0);  // the contour's farthest point from the tip
+  for (const auto& o : m.cracks)
+    for (std::size_t i = 0; i + 1 < o.points.size(); ++i) {
+      const Vec<2> a = o.points[i], b = o.points[i + 1];
+      const int n = std::max(1, static_cast<int>(std::ceil(4 * (b - a).norm() / h)));
+      bool inside = false;
+      for (int k = 0; k <= n && !inside; ++k) {
+        const Vec<2> x = a + (b - a) * (static_cast<double>(k) / n);
+        // The tip's own crack runs into the contour along its last stretch: skip the points on it
+        // within the contour's reach of the tip, measured along the crack.
+        if (&o == &c) {
+          const std::size_t last = o.points.size() - 1;
+          double along = 0.0;  // distance from the tip along the polyline to x
+          if (end == 1) {
+            along = (o.points[i + 1] - x).norm();
+            for (std::size_t j = i + 1; j < last; ++j) along += (o.points[j + 1] - o.points[j]).norm();
+          } else {
+            along = (x - o.points[i]).norm();
+            for (std::size_t j = 0; j < i; ++j) along += (o.points[j + 1] - o.points[j]).norm();
+          }
+          if (along <= reach + 1e-9 * h) continue;
+        }
+        inside = crack::inside_contour(f, s, h, x);
+      }
+      if (inside) {
+        warnings.push_back("crack_tips: the contour around the " + std::string(end ? "end" : "start") + " tip of crack '" +
+                           c.name + "' encloses part of crack '" + o.name +
+                           "'; J there is not path-independent (use a smaller crack_tips.radius or move the cracks apart)");
+        return;
+      }
+    }
+}
+
+static crack::TipSettings read_crack_tips(const json& scene, const Model<2>& m, double time_scale,
+                                          std::vector<std::string>& warnings) {
   const ObjectReader r(scene["crack_tips"], "crack_tips", {"interval", "contour", "radius", "points", "volume_term"});
   if (m.cracks.empty()) throw SceneError("crack_tips", "the scene declares no cracks (key \"cracks\")");
   crack::TipSettings s;
@@ -142,6 +183,7 @@ static crack::TipSettings read_crack_tips(const json& scene, const Model<2>& m, 
       if ((x.array() - extent < m.grid.origin.array()).any() || (x.array() + extent > m.grid.upper().array()).any())
         throw SceneError("crack_tips.radius", "the contour around the " + std::string(end ? "end" : "start") +
                                                   " tip of crack '" + c.name + "' leaves the grid; enlarge the grid");
+      warn_contour_meets_cracks(m, s, c, end, warnings);
       for (std::size_t p = 0; p < m.particles.size(); ++p)
         if ((m.particles.x[p] - x).norm() <= extent) {
           double g, nu;
@@ -555,7 +597,7 @@ Model<Dim> build_model(const json& scene) {
     if constexpr (Dim == 3)
       throw SceneError("crack_tips", "crack-tip parameters are computed for 2D cracks only");
     else
-      m.crack_tips = read_crack_tips(scene, m, units.factor(Quantity::Time));
+      m.crack_tips = read_crack_tips(scene, m, units.factor(Quantity::Time), m.warnings);
   }
   // Bodies that share grid nodes with very different mass per particle make the node's effective
   // wave speed exceed the material estimate; linear shape functions then need a smaller CFL

@@ -32,7 +32,11 @@ namespace detail {
 // Mass-weighted nodal sums of one velocity field at one node (eq. 36).
 struct TipFieldSums {
   double m = 0.0;
-  double energy = 0.0;     // m (W + K)
+  double energy = 0.0;     // m W
+  // m rho |v|^2 and m rho v: the kinetic-energy density relative to the tip, K = rho |v - v_tip|^2 / 2,
+  // follows from these once the tip's velocity is known.
+  double rho = 0.0, rho_vv = 0.0;
+  Vec<2> rho_v = Vec<2>::Zero();
   Vec<3> stress = Vec<3>::Zero();  // m (sxx, syy, sxy)
   Mat<2> grad_u = Mat<2>::Zero();  // m du_i/dx_j
   Vec<2> u = Vec<2>::Zero(), v = Vec<2>::Zero();
@@ -89,7 +93,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         const auto& e = P.strain[p];
         const Material<2>& mat = *m.materials[P.material[p]];
         const double mp = P.mass[p];
-        const double energy = mat.strain_energy_density(s, e) + 0.5 * mp / P.volume0[p] * P.v[p].squaredNorm();
+        const double energy = mat.strain_energy_density(s, e);
         const Mat<2> gu = grad_u(p);
         St st;
         st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
@@ -105,11 +109,42 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
           a.grad_u += mw * gu;
           a.u += mw * P.u[p];
           a.v += mw * P.v[p];
+          const double rho = mp / P.volume0[p];
+          a.rho += mw * rho;
+          a.rho_vv += mw * rho * P.v[p].squaredNorm();
+          a.rho_v += mw * rho * P.v[p];
         });
       }
       if (nearest == P.size()) continue;  // no material at this tip
 
-      // Eq. 37: the field values a particle at x would see (bilinear weights of x's cell).
+      // The tip's velocity: the centre-of-mass velocity of all fields at the tip, which the crack
+      // points move with (Task 7). Kinetic energies and velocities enter J relative to it, so that a
+      // crack carried by a translating body gives the J of the body at rest (Galilean invariance;
+      // with absolute velocities a translating body's K term is large and its discretisation error
+      // does not cancel). For a crack at rest this changes nothing.
+      V v_tip = V::Zero();
+      {
+        const double fx = (f.tip.x() - G.origin.x()) * inv_h, fy = (f.tip.y() - G.origin.y()) * inv_h;
+        const int i = static_cast<int>(std::floor(fx)), j = static_cast<int>(std::floor(fy));
+        double wsum = 0.0;
+        for (int a = 0; a < 2; ++a)
+          for (int b = 0; b < 2; ++b) {
+            const int64_t n = static_cast<int64_t>(i + a) * stride[0] + (j + b);
+            const double w = (a ? fx - i : 1.0 - (fx - i)) * (b ? fy - j : 1.0 - (fy - j));
+            if (i + a < 0 || j + b < 0 || i + a >= G.nodes[0] || j + b >= G.nodes[1]) continue;
+            double mn = 0.0;
+            V pn = V::Zero();
+            for (auto it = sums.lower_bound({n, 0u}); it != sums.end() && it->first.first == n; ++it)
+              mn += it->second.m, pn += it->second.v;
+            if (!(mn > 0.0) || w == 0.0) continue;
+            v_tip += w * pn / mn;
+            wsum += w;
+          }
+        if (wsum > 0.0) v_tip /= wsum;
+      }
+
+      // Eq. 37: the field values a particle at x would see (bilinear weights of x's cell); energy is
+      // W + K with K relative to the tip.
       auto interpolate = [&](const V& x, detail::TipFieldSums& q) {
         const double fx = (x.x() - G.origin.x()) * inv_h, fy = (x.y() - G.origin.y()) * inv_h;
         const int i = static_cast<int>(std::floor(fx)), j = static_cast<int>(std::floor(fy));
@@ -125,7 +160,8 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
             if (w == 0.0 || it == sums.end() || !(it->second.m > 0.0)) continue;
             const auto& s = it->second;
             const double k = w / s.m;
-            q.energy += k * s.energy, q.stress += k * s.stress, q.grad_u += k * s.grad_u, q.u += k * s.u;
+            const double kinetic = 0.5 * (s.rho_vv - 2.0 * v_tip.dot(s.rho_v) + s.rho * v_tip.squaredNorm());
+            q.energy += k * (s.energy + kinetic), q.stress += k * s.stress, q.grad_u += k * s.grad_u, q.u += k * s.u;
             wsum += w;
           }
         if (!(wsum > 0.0)) return false;  // outside the material
@@ -152,7 +188,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
           const auto it = sums.find({n, crack::field_key(m.cracks, P.x[p], node_pos(n))});
           if (it != sums.end() && it->second.m > 0.0) gv += (it->second.v / it->second.m) * g.transpose();
         });
-        J += P.mass[p] / thickness[p] * (grad_u(p).transpose() * accel(p) - gv.transpose() * P.v[p]);
+        J += P.mass[p] / thickness[p] * (grad_u(p).transpose() * accel(p) - gv.transpose() * (P.v[p] - v_tip));
       }
       rec.J1 = J.dot(f.e1);
       rec.J2 = J.dot(f.e2);
