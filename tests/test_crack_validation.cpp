@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <string>
 #include <array>
 #include <map>
 
@@ -160,14 +162,15 @@ struct MotionRun {
 };
 
 MotionRun crack_motion(double h, double vx, double omega, double end_ms, int k_samples,
-                       const std::vector<crack::TipSettings>& ts) {
+                       const std::vector<crack::TipSettings>& ts, const std::string& detection = "volume") {
   json s = {{"units", {{"length", "mm"}, {"stress", "Pa"}, {"density", "g/cm3"}, {"velocity", "mm/s"},
                        {"time", "ms"}, {"inverse_time", "1/ms"}}},
             {"analysis", {{"type", "plane_stress"}, {"thickness", 1}}},
             {"grid", {{"cell_size", h}, {"min", {-30, -30}}, {"max", {30, 30}}}},
             {"mpm", {{"shape_function", "ugimp"}, {"stress_update", "USAVG"}}},
             {"materials", {test::material("soft", 1e5, 0.33, 1.5)}},
-            {"cracks", {{{"name", "centre"}, {"from", {-6, 0}}, {"to", {6, 0}}, {"segment_length", h}}}},
+            {"cracks", {{{"name", "centre"}, {"from", {-6, 0}}, {"to", {6, 0}}, {"segment_length", h},
+                          {"contact", {{"law", "frictionless"}, {"detection", detection}}}}}},
             {"time", {{"end", end_ms}, {"dt", 0.03125 * h}}}};  // CFL 0.34 with the moving plate's speed
   const double w = omega;  // rad/ms about the plate centre
   s["bodies"] = {{{"name", "top"}, {"material", "soft"}, {"shape", {{"type", "rectangle"}, {"min", {-15, 0}}, {"max", {15, 15}}}},
@@ -237,33 +240,43 @@ MotionDifference motion_difference(const MotionRun& rest, const MotionRun& movin
 // against the effective-tip estimate h / (4a) = 1 % at 0.25 mm (docs/validation.md).
 double opening_tolerance(double h, double a) { return std::sqrt(h / (8 * a)); }
 
-// Opening phase, 0-4 ms (the crack opens to its peak and starts to close; its faces stay at least
-// 0.08 mm apart behind the tips at every cell size, so crack contact never acts). 1 mm cells.
-TEST(CrackMotion, RigidlyMovingAndRotatingBodyOpensItsCrackAsAtRest) {
-  const double h = 1.0, a = 6.0;
-  const auto rest = crack_motion(h, 0, 0, 4, 0, {});
-  const auto moving = crack_motion(h, 500, 0.01, 4, 0, {});  // 2 mm and 2.3 degrees over the run
+// Moving/rotating vs resting plate over 0-end_ms with the given contact detection: prints the
+// difference and expects it under the bound.
+void expect_crack_as_at_rest(double h, double end_ms, const std::string& detection) {
+  const double a = 6.0;
+  const auto rest = crack_motion(h, 0, 0, end_ms, 0, {}, detection);
+  const auto moving = crack_motion(h, 500, 0.01, end_ms, 0, {}, detection);  // 500 mm/s, 0.01 rad/ms
   const MotionDifference d = motion_difference(rest, moving);
-  std::printf("moving/rotating cracked plate, 0-4 ms: peak opening %.4f mm, max difference %.2f %% (bound %.2f %%)\n",
-              d.peak_opening * 1e3, 100 * d.opening / d.peak_opening, 100 * opening_tolerance(h, a));
+  std::printf("moving/rotating cracked plate, %s detection, h %.2f mm, 0-%g ms: peak opening %.4f mm, max "
+              "difference %.2f %% (bound %.2f %%)\n",
+              detection.c_str(), h, end_ms, d.peak_opening * 1e3, 100 * d.opening / d.peak_opening,
+              100 * opening_tolerance(h, a));
   ASSERT_GT(d.peak_opening, 0.1e-3);
   EXPECT_LT(d.opening / d.peak_opening, opening_tolerance(h, a));
 }
 
-// MISS (docs/validation.md): the whole 6 ms, through the closing phase where crack contact acts. At
-// 1 mm the difference is 12.2 % (under its 14.4 % bound) but at 0.5 mm 17.8 % against 10.2 % (at
-// 0.25 mm 8.3 % against 7.2 %): the
-// volume contact detection reads nodal volumes, which depend on where the crack lies relative to the
-// nodes (on a node row at rest, across the rows when rotated); the resting 1 mm crack's faces stop
-// 0.1 mm apart from 4.5 ms on. Without contact the 0.5 mm difference is 7.3 %.
-TEST(CrackMotion, DISABLED_RigidlyMovingAndRotatingBodyClosesItsCrackAsAtRest) {
-  const double h = 0.5, a = 6.0;
-  const auto rest = crack_motion(h, 0, 0, 6, 0, {});
-  const auto moving = crack_motion(h, 500, 0.01, 6, 0, {});
-  const MotionDifference d = motion_difference(rest, moving);
-  std::printf("moving/rotating cracked plate, 0-6 ms: peak opening %.4f mm, max difference %.2f %% (bound %.2f %%)\n",
-              d.peak_opening * 1e3, 100 * d.opening / d.peak_opening, 100 * opening_tolerance(h, a));
-  EXPECT_LT(d.opening / d.peak_opening, opening_tolerance(h, a));
+// Opening phase, 0-4 ms (the crack opens to its peak and starts to close; its faces stay at least
+// 0.08 mm apart behind the tips at every cell size, so crack contact never acts). 1 mm cells, the
+// default (volume) detection: 8.31 % against 14.4 %. 2 mm and 2.3 degrees over the run.
+TEST(CrackMotion, RigidlyMovingAndRotatingBodyOpensItsCrackAsAtRest) { expect_crack_as_at_rest(1.0, 4, "volume"); }
+
+// The whole 6 ms, through the closing phase where crack contact acts, with displacement detection
+// (seed 000 App. B: the faces touch when their nodal displacements overlap; the crack starts
+// closed, as that criterion assumes). 0.5 mm cells: 7.77 % against 10.2 % (1 mm: 11.23 % against
+// 14.4 %; 0.25 mm: 5.99 % against 7.2 %; DISABLED_ClosingDetectionStudy). About 4 s on one thread.
+TEST(CrackMotion, RigidlyMovingAndRotatingBodyClosesItsCrackAsAtRest) {
+  expect_crack_as_at_rest(0.5, 6, "displacement");
+}
+
+// MISS (docs/validation.md): the same with the volume detection (seed 002, the default): 17.78 %
+// against 10.2 % at 0.5 mm (1 mm: 12.17 % against 14.4 %; 0.25 mm: 8.30 % against 7.2 %). Not a
+// defect of the implementation but of the criterion: an opening g removes about g h (1 - d/h) of
+// volume from a node at distance d from the crack, so with V_rel >= v_sep = 0.9 approaching faces
+// count as touching while g <= 0.1 h / (1 - d/h). The resting crack lies on a node row (d = 0) and
+// its faces stop 0.1 cell apart; the rotated crack crosses the rows, nodes half a cell off it read
+// "contact" at 0.2 cell and more, and its faces stop unevenly. About 4 s on one thread.
+TEST(CrackMotion, DISABLED_RigidlyMovingAndRotatingBodyClosesItsCrackAsAtRestVolumeDetection) {
+  expect_crack_as_at_rest(0.5, 6, "volume");
 }
 
 // The convergence study behind the tolerance: moving vs resting plate at 1, 0.5 and 0.25 mm cells
@@ -295,6 +308,31 @@ TEST(CrackMotion, DISABLED_ConvergenceStudy) {
       std::fflush(stdout);
     }
   }
+}
+
+// The closing phase with each contact detection: moving vs resting plate at 1, 0.5 and 0.25 mm
+// cells (0-4 and 0-6 ms), and where the faces stop: the normal opening at 6 ms over the crack points
+// behind the tips, in cells. Prints; asserts nothing (about 1 minute on one thread). Run with
+// --gtest_also_run_disabled_tests --gtest_filter='CrackMotion.DISABLED_ClosingDetectionStudy'.
+TEST(CrackMotion, DISABLED_ClosingDetectionStudy) {
+  for (double h : {1.0, 0.5, 0.25})
+    for (const char* det : {"volume", "displacement"}) {
+      const auto rest = crack_motion(h, 0, 0, 6, 0, {}, det);
+      const auto moving = crack_motion(h, 500, 0.01, 6, 0, {}, det);
+      const MotionDifference d4 = motion_difference(rest, moving, 4.0 / 6.0), d6 = motion_difference(rest, moving);
+      auto range = [&](const MotionRun& r) {  // min and max normal opening at 6 ms, interior points, / h
+        const auto& o = r.opening.back();
+        double lo = 1e300, hi = -1e300;
+        for (std::size_t i = 1; i + 1 < o.size(); ++i) lo = std::min(lo, o[i][0]), hi = std::max(hi, o[i][0]);
+        return std::array<double, 2>{lo * 1e3 / h, hi * 1e3 / h};
+      };
+      const auto rr = range(rest), rm = range(moving);
+      std::printf("h %.2f mm, %-12s: opening 0-4 ms %.2f %%, 0-6 ms %.2f %% (bound %.2f %%); opening at 6 ms "
+                  "[%.3f, %.3f] cell at rest, [%.3f, %.3f] cell moving\n",
+                  h, det, 100 * d4.opening / d4.peak_opening, 100 * d6.opening / d6.peak_opening,
+                  100 * opening_tolerance(h, 6.0), rr[0], rr[1], rm[0], rm[1]);
+      std::fflush(stdout);
+    }
 }
 
 }  // namespace

@@ -264,7 +264,11 @@ class CrackFields {
           const double approach = dv.dot(nrm);  // > 0: the faces move towards each other
           bool touching;
           if (c.detection == crack::Crack2D::Detection::Volume) {
-            const double vrel = volume_[b] / cell_volume;  // eq. 10
+            // Eq. 10. An opening g takes about g h (1 - d/h) from the volume of a node at distance d
+            // from the crack, so approaching faces count as touching while g <= (1 - v_sep) h / (1 - d/h):
+            // the gap at which they stop depends on where the crack lies among the nodes (0.1 cell on
+            // a node row, 0.2 cell half a cell off; docs/validation.md, 2D cracks item 4).
+            const double vrel = volume_[b] / cell_volume;
             touching = vrel > c.v_contact || (vrel >= c.v_sep && approach > 0.0);
           } else {
             // Seed 000 eqs. 69-70, with the displacements predicted to the end of the step
