@@ -10,6 +10,7 @@
 #include "libmpm/io/particle_fields.hpp"
 #include "libmpm/io/point_set.hpp"
 #include "libmpm/io/pvd_writer.hpp"
+#include "libmpm/io/run_files.hpp"
 #include "libmpm/io/vtu_writer.hpp"
 #include "libmpm/pd/pd_solver.hpp"
 #include "libmpm/pd/tips.hpp"
@@ -79,21 +80,6 @@ PdCheckpoint<Dim> read_checkpoint(const fs::path& file, PdSystem<Dim>& m, std::v
   return c;
 }
 
-void write_status(const fs::path& out, const std::string& status, const std::string& message, long step,
-                  double time, const nlohmann::json& extra) {
-  nlohmann::json j = {{"status", status}, {"message", message}, {"step", step}, {"time", time}};
-  for (auto it = extra.begin(); it != extra.end(); ++it) j[it.key()] = it.value();
-  const fs::path tmp = out / "run.json.tmp";
-  std::ofstream(tmp) << j.dump(2) << "\n";
-  fs::rename(tmp, out / "run.json");
-}
-
-std::string frame_name(int k) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "particles_%06d.vtu", k);
-  return buf;
-}
-
 }  // namespace
 
 template <int Dim>
@@ -152,17 +138,11 @@ RunSummary run_pd(PdSystem<Dim>& m, const RunOptions& opt) {
     ck = read_checkpoint<Dim>(ck_path, m, last_tip, last_tip_time);
     if (ck.scene_hash != opt.scene_hash)
       throw std::runtime_error(ck_path.string() + ": written for a different scene; run without --resume");
-    pvd = io::PvdIndex::load(out / "particles.pvd");
-    pvd.truncate_after(ck.time);
+    pvd = io::resumed_series(out / "particles.pvd", ck.time);
     io::CsvSeries::truncate_after(csv_path, ck.time);
     io::CsvSeries::truncate_after(tip_path, ck.time);
   } else {
-    for (const auto& e : fs::directory_iterator(out)) {
-      const std::string n = e.path().filename().string();
-      if ((n.rfind("particles_", 0) == 0 && e.path().extension() == ".vtu") || n == "particles.pvd" ||
-          n == "global.csv" || n == "checkpoint.bin" || n == "run.json" || n == "crack_tips.csv")
-        fs::remove(e.path());
-    }
+    io::remove_run_outputs(out, {"particles"}, {"global.csv", "checkpoint.bin", "run.json", "crack_tips.csv"});
   }
   // The solver computes the initial accelerations; on resume they are replaced by the saved ones
   // (bit-identical continuation) together with u, v and the bond states.
@@ -194,13 +174,12 @@ RunSummary run_pd(PdSystem<Dim>& m, const RunOptions& opt) {
     else j["branching"] = nullptr;
     return j;
   };
-  write_status(out, "running", "", solver.step_count(), solver.time(), extra());
+  io::write_run_status(out, "running", "", solver.step_count(), solver.time(), extra());
 
   const double dt = m.dt, eps = 1e-9 * dt;
   RunSummary sum;
-  double e0 = -1.0, emax = 0.0;
   auto write_frame = [&]() {
-    const std::string name = frame_name(ck.next_frame);
+    const std::string name = io::frame_file_name("particles", ck.next_frame);
     io::write_vtu(out / name, pd_point_set<Dim>(m, solver));
     pvd.add(solver.time(), name);
     pvd.write();
@@ -221,10 +200,7 @@ RunSummary run_pd(PdSystem<Dim>& m, const RunOptions& opt) {
                                g.damping_loss, g.total(), double(g.broken)};
     for (int d = 0; d < Dim; ++d) row.push_back(g.momentum[d]);
     csv.row(row);
-    if (e0 < 0) e0 = g.total();
-    emax = std::max(emax, g.total());
-    const double scale = std::max(e0, emax);
-    if (scale > 0) sum.max_energy_drift = std::max(sum.max_energy_drift, std::fabs(g.total() - e0) / scale);
+    sum.observe_energy(g.total());
     return g;
   };
   auto record_tips = [&]() {
@@ -249,14 +225,14 @@ RunSummary run_pd(PdSystem<Dim>& m, const RunOptions& opt) {
         // Only columns ahead of the pre-cracks' damaged band at t = 0 can show a fork.
         if (auto b = find_branch(m, phi, -std::numeric_limits<double>::infinity(), m.tip_threshold)) {
           ck.branch_time = t, ck.branch_x = b->x, ck.branch_y = b->y;
-          write_status(out, "running", "", solver.step_count(), t, extra());
+          io::write_run_status(out, "running", "", solver.step_count(), t, extra());
         }
       }
     }
   };
   auto abort_run = [&](const std::string& msg) {
     write_frame();
-    write_status(out, "aborted", msg, solver.step_count(), solver.time(), extra());
+    io::write_run_status(out, "aborted", msg, solver.step_count(), solver.time(), extra());
     throw RunAborted(msg);
   };
 
@@ -281,7 +257,7 @@ RunSummary run_pd(PdSystem<Dim>& m, const RunOptions& opt) {
       ck.next_global_time += m.output.global_interval;
       if (!std::isfinite(g.total()))
         abort_run("step " + std::to_string(g.step) + ", time " + std::to_string(t) + " s: energy is not finite");
-      const double ref = std::max({e0, std::fabs(g.external_work), 1e-300});
+      const double ref = std::max({sum.first_energy, std::fabs(g.external_work), 1e-300});
       if (g.total() > m.energy_blowup_factor * ref && g.total() > 1e-12) {
         std::ostringstream msg;
         msg << "step " << g.step << ", time " << t << " s: energy blow-up, total energy " << g.total()
@@ -313,7 +289,7 @@ RunSummary run_pd(PdSystem<Dim>& m, const RunOptions& opt) {
   sum.steps = solver.step_count();
   sum.time = solver.time();
   sum.wall_s = std::chrono::duration<double>(clock::now() - t0).count();
-  write_status(out, "complete", "", sum.steps, sum.time, extra());
+  io::write_run_status(out, "complete", "", sum.steps, sum.time, extra());
   return sum;
 }
 

@@ -96,20 +96,12 @@ void PdSolver<Dim>::step() {
   const double dt = m_.dt, h = 0.5 * dt;
   // Work of the external forces and of the reactions at prescribed velocities over the step:
   // trapezoidal in the force, exact in the displacement increment dt * v_half.
-  double work_old = 0.0;
-  for (int32_t p : loaded_) work_old += fext_[p].dot(P.v[p] + h * P.a[p]);
-  for (int32_t p : fixed_)
-    for (int d = 0; d < Dim; ++d)
-      if (P.fixed[p] & (1u << d)) work_old -= (fint_[p][d] + fext_[p][d]) * P.v_fixed[p][d];
+  const double work_old = load_power(h);
 
 #pragma omp parallel for schedule(static) if (parallel_)
   for (std::size_t p = 0; p < n; ++p) {
-    Vec<Dim> v = P.v[p] + h * P.a[p];
-    if (P.fixed[p])
-      for (int d = 0; d < Dim; ++d)
-        if (P.fixed[p] & (1u << d)) v[d] = P.v_fixed[p][d];
-    P.v[p] = v;
-    P.u[p] += dt * v;
+    P.v[p] = kicked(p, h);
+    P.u[p] += dt * P.v[p];
     y_[p] = P.x0[p] + P.u[p];
   }
   // Damping acts on the half-step velocity (a = ... - kappa v); its dissipation over the step.
@@ -119,22 +111,32 @@ void PdSolver<Dim>::step() {
   ++step_;
   update_loads(time_);
   forces();
-  double work_new = 0.0;
-  for (int32_t p : loaded_) work_new += fext_[p].dot(P.v[p]);
-  for (int32_t p : fixed_)
-    for (int d = 0; d < Dim; ++d)
-      if (P.fixed[p] & (1u << d)) work_new -= (fint_[p][d] + fext_[p][d]) * P.v_fixed[p][d];
   // Both sums use v_half (v + h a_old = the half-step velocity for free points).
-  work_ += 0.5 * dt * (work_old + work_new);
+  work_ += 0.5 * dt * (work_old + load_power(0.0));
 
 #pragma omp parallel for schedule(static) if (parallel_)
-  for (std::size_t p = 0; p < n; ++p) {
-    Vec<Dim> v = P.v[p] + h * P.a[p];
-    if (P.fixed[p])
-      for (int d = 0; d < Dim; ++d)
-        if (P.fixed[p] & (1u << d)) v[d] = P.v_fixed[p][d];
-    P.v[p] = v;
-  }
+  for (std::size_t p = 0; p < n; ++p) P.v[p] = kicked(p, h);
+}
+
+template <int Dim>
+Vec<Dim> PdSolver<Dim>::kicked(std::size_t p, double h) const {
+  const auto& P = m_.points;
+  Vec<Dim> v = P.v[p] + h * P.a[p];
+  if (P.fixed[p])
+    for (int d = 0; d < Dim; ++d)
+      if (P.fixed[p] & (1u << d)) v[d] = P.v_fixed[p][d];
+  return v;
+}
+
+template <int Dim>
+double PdSolver<Dim>::load_power(double h) const {
+  const auto& P = m_.points;
+  double w = 0.0;
+  for (int32_t p : loaded_) w += fext_[p].dot(P.v[p] + h * P.a[p]);
+  for (int32_t p : fixed_)
+    for (int d = 0; d < Dim; ++d)
+      if (P.fixed[p] & (1u << d)) w -= (fint_[p][d] + fext_[p][d]) * P.v_fixed[p][d];
+  return w;
 }
 
 template <int Dim>

@@ -46,6 +46,10 @@ class PdSolver {
  private:
   void update_loads(double t);
   void forces();  // m.points.a from the current positions (breaks bonds)
+  // Point p's velocity after a kick of h: v + h a, with its prescribed components held.
+  Vec<Dim> kicked(std::size_t p, double h) const;
+  // Power of the external forces at v + h a and of the reactions at the prescribed velocities.
+  double load_power(double h) const;
 
   PdSystem<Dim>& m_;
   std::vector<Vec<Dim>> y_;          // current positions x0 + u

@@ -12,6 +12,7 @@
 #include "libmpm/io/csv_writer.hpp"
 #include "libmpm/io/particle_fields.hpp"
 #include "libmpm/io/pvd_writer.hpp"
+#include "libmpm/io/run_files.hpp"
 #include "libmpm/io/vtu_writer.hpp"
 
 namespace cleave {
@@ -25,20 +26,6 @@ uint64_t scene_hash(const nlohmann::json& scene) {
 }
 
 namespace {
-
-void write_status(const fs::path& out, const std::string& status, const std::string& message, long step,
-                  double time) {
-  nlohmann::json j = {{"status", status}, {"message", message}, {"step", step}, {"time", time}};
-  const fs::path tmp = out / "run.json.tmp";
-  std::ofstream(tmp) << j.dump(2) << "\n";
-  fs::rename(tmp, out / "run.json");
-}
-
-std::string frame_name(const char* series, int k) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%s_%06d.vtu", series, k);
-  return buf;
-}
 
 template <int Dim>
 std::vector<std::string> global_columns() {
@@ -80,23 +67,13 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
     if (ck.scene_hash != opt.scene_hash)
       throw std::runtime_error(ck_path.string() + ": written for a different scene; run without --resume");
     stepper->restore(ck.time, ck.step, ck.external_work);
-    pvd = io::PvdIndex::load(out / "particles.pvd");
-    pvd.truncate_after(ck.time);
-    if (cracks) {
-      crack_pvd = io::PvdIndex::load(out / "cracks.pvd");
-      crack_pvd.truncate_after(ck.time);
-    }
+    pvd = io::resumed_series(out / "particles.pvd", ck.time);
+    if (cracks) crack_pvd = io::resumed_series(out / "cracks.pvd", ck.time);
     io::CsvSeries::truncate_after(csv_path, ck.time);
     io::CsvSeries::truncate_after(tips_path, ck.time);
   } else {
     // A fresh run replaces the outputs of an earlier one in the same directory.
-    for (const auto& e : fs::directory_iterator(out)) {
-      const std::string n = e.path().filename().string();
-      if (((n.rfind("particles_", 0) == 0 || n.rfind("cracks_", 0) == 0) && e.path().extension() == ".vtu") ||
-          n == "particles.pvd" || n == "cracks.pvd" || n == "global.csv" || n == "checkpoint.bin" || n == "run.json" ||
-          n == "crack_tips.csv")
-        fs::remove(e.path());
-    }
+    io::remove_run_outputs(out, {"particles", "cracks"}, {"global.csv", "checkpoint.bin", "run.json", "crack_tips.csv"});
   }
   io::CsvSeries csv(csv_path, global_columns<Dim>(), opt.resume);
   // crack_tips.csv: rows every crack_tips.interval (k * interval, so a resumed run finds its next
@@ -109,19 +86,18 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
     const double iv = m.crack_tips->interval;
     next_tip_time = opt.resume ? (std::floor(ck.time / iv + 1e-9) + 1.0) * iv : 0.0;
   }
-  write_status(out, "running", "", stepper->step_count(), stepper->time());
+  io::write_run_status(out, "running", "", stepper->step_count(), stepper->time());
 
   const double dt = m.dt;
   const double eps = 1e-9 * dt;
   RunSummary sum;
-  double e0 = -1.0, emax = 0.0;
   auto write_frame = [&]() {
-    const std::string name = frame_name("particles", ck.next_frame);
+    const std::string name = io::frame_file_name("particles", ck.next_frame);
     io::write_vtu(out / name, io::particle_point_set<Dim>(m, m.output.fields));
     pvd.add(stepper->time(), name);
     pvd.write();
     if (cracks) {
-      const std::string cname = frame_name("cracks", ck.next_frame);
+      const std::string cname = io::frame_file_name("cracks", ck.next_frame);
       io::write_vtu(out / cname, tips ? io::crack_point_set(m.cracks, stepper->crack_tip_parameters(*m.crack_tips))
                                       : io::crack_point_set(m.cracks));
       crack_pvd.add(stepper->time(), cname);
@@ -140,10 +116,7 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
   auto record_global = [&]() {
     const auto g = stepper->global_state();
     csv.row(global_row<Dim>(g));
-    if (e0 < 0) e0 = g.total();
-    emax = std::max(emax, g.total());
-    const double scale = std::max(e0, emax);
-    if (scale > 0) sum.max_energy_drift = std::max(sum.max_energy_drift, std::fabs(g.total() - e0) / scale);
+    sum.observe_energy(g.total());
     return g;
   };
   auto record_tips = [&]() {
@@ -152,7 +125,7 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
   };
   auto abort_run = [&](const std::string& msg) {
     write_frame();
-    write_status(out, "aborted", msg, stepper->step_count(), stepper->time());
+    io::write_run_status(out, "aborted", msg, stepper->step_count(), stepper->time());
     throw RunAborted(msg);
   };
 
@@ -190,7 +163,7 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
       ck.next_global_time += m.output.global_interval;
       if (!std::isfinite(g.total())) abort_run("step " + std::to_string(g.step) + ", time " + std::to_string(t) +
                                                " s: energy is not finite");
-      const double ref = std::max({e0, std::fabs(g.external_work), 1e-300});
+      const double ref = std::max({sum.first_energy, std::fabs(g.external_work), 1e-300});
       if (g.total() > m.energy_blowup_factor * ref && g.total() > 1e-12) {
         std::ostringstream msg;
         // Name the fastest particle: where the blow-up is.
@@ -229,7 +202,7 @@ RunSummary run_model(Model<Dim>& m, const RunOptions& opt) {
   sum.steps = stepper->step_count();
   sum.time = stepper->time();
   sum.wall_s = std::chrono::duration<double>(clock::now() - t0).count();
-  write_status(out, "complete", "", sum.steps, sum.time);
+  io::write_run_status(out, "complete", "", sum.steps, sum.time);
   return sum;
 }
 

@@ -2,6 +2,8 @@
 // global.csv, a checkpoint at every frame, and run.json whose "status" says whether the output is
 // complete, still running, or stopped by a detected problem.
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -32,6 +34,16 @@ struct RunSummary {
   double time = 0.0, wall_s = 0.0;
   int frames = 0;
   double max_energy_drift = 0.0;  // max |E - E0| / max(E0, max E) over global rows (no loads/damping)
+
+  // Takes the total energy of one global row: E0 is the first, the drift is folded into
+  // max_energy_drift. Shared by the MPM and PD runs.
+  void observe_energy(double total) {
+    if (first_energy < 0) first_energy = total;
+    largest_energy = std::max(largest_energy, total);
+    const double scale = std::max(first_energy, largest_energy);
+    if (scale > 0) max_energy_drift = std::max(max_energy_drift, std::fabs(total - first_energy) / scale);
+  }
+  double first_energy = -1.0, largest_energy = 0.0;
 };
 
 // Throws RunAborted (after writing the last state) when a step detects a problem.
