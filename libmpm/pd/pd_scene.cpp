@@ -315,18 +315,7 @@ PdSystem<Dim> build_pd_system(const json& scene) {
       if (!r.has("region")) throw SceneError(r.at("region"), "missing: a velocity condition needs a region");
       Vec<Dim> lo, hi;
       read_region<Dim>(r, "region", L, lo, hi);
-      const json& vj = r["velocity"];
-      if (!r.has("velocity") || !vj.is_array() || vj.size() != Dim)
-        throw SceneError(r.at("velocity"), "expected " + std::to_string(Dim) + " entries, each a number or null (free)");
-      uint8_t mask = 0;
-      Vec<Dim> v = Vec<Dim>::Zero();
-      for (int d = 0; d < Dim; ++d) {
-        if (vj[d].is_null()) continue;
-        mask |= uint8_t(1u << d);
-        v[d] = ObjectReader::number_of(vj[d], r.at("velocity") + "[" + std::to_string(d) + "]") *
-               units.factor(Quantity::Velocity);
-      }
-      if (!mask) throw SceneError(r.at("velocity"), "every component is null: the condition does nothing");
+      const auto [mask, v] = r.partial_vec<Dim>("velocity", units.factor(Quantity::Velocity));
       int count = 0;
       for (std::size_t p = 0; p < P.size(); ++p) {
         if (!in_box<Dim>(P.x0[p], lo, hi, tol)) continue;

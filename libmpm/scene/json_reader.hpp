@@ -8,7 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
+#include <cstdint>
 #include <string>
+#include <utility>
 
 #include "libmpm/core/error.hpp"
 #include "libmpm/core/types.hpp"
@@ -72,6 +74,24 @@ class ObjectReader {
   Vec<Dim> vec(const char* key, double scale = 1.0) const {
     if (!has(key)) throw SceneError(at(key), "missing");
     return vec_of<Dim>(j_[key], at(key), scale);
+  }
+
+  // A vector whose components may be null (free): returns the bit mask of the given components and
+  // their values (times scale). Errors name the key: not Dim entries, a non-number, all null.
+  template <int Dim>
+  std::pair<uint8_t, Vec<Dim>> partial_vec(const char* key, double scale) const {
+    const nlohmann::json& vj = j_[key];
+    if (!has(key) || !vj.is_array() || vj.size() != Dim)
+      throw SceneError(at(key), "expected " + std::to_string(Dim) + " entries, each a number or null (free)");
+    uint8_t mask = 0;
+    Vec<Dim> v = Vec<Dim>::Zero();
+    for (int d = 0; d < Dim; ++d) {
+      if (vj[d].is_null()) continue;
+      mask |= uint8_t(1u << d);
+      v[d] = number_of(vj[d], at(key) + "[" + std::to_string(d) + "]") * scale;
+    }
+    if (!mask) throw SceneError(at(key), "every component is null: the condition does nothing");
+    return {mask, v};
   }
 
   static double number_of(const nlohmann::json& v, const std::string& path) {

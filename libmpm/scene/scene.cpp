@@ -507,19 +507,7 @@ Model<Dim> build_model(const json& scene) {
       if (!r.has("region")) throw SceneError(r.at("region"), "missing: a velocity condition needs a region");
       Vec<Dim> lo, hi;
       read_region(r, lo, hi);
-      const json& vj = r["velocity"];
-      if (!r.has("velocity") || !vj.is_array() || vj.size() != Dim)
-        throw SceneError(r.at("velocity"), "expected " + std::to_string(Dim) +
-                                               " entries, each a number or null (free)");
-      uint8_t mask = 0;
-      Vec<Dim> v = Vec<Dim>::Zero();
-      for (int d = 0; d < Dim; ++d) {
-        if (vj[d].is_null()) continue;
-        mask |= uint8_t(1u << d);
-        v[d] = ObjectReader::number_of(vj[d], r.at("velocity") + "[" + std::to_string(d) + "]") *
-               units.factor(Quantity::Velocity);
-      }
-      if (!mask) throw SceneError(r.at("velocity"), "every component is null: the condition does nothing");
+      const auto [mask, v] = r.partial_vec<Dim>("velocity", units.factor(Quantity::Velocity));
       const int count = node_loop(lo, hi, [&](int64_t n) {
         auto& c = conditions[n];
         c.first |= mask;
