@@ -63,8 +63,10 @@ class CrackFields {
     // 1 + half-width (uGIMP). A multi-field node's field comes from a particle-node line that meets a
     // segment, so that segment point lies within r of the node, and a particle weighting the node
     // lies within 2 r of it. (Nodes of zero weight receive nothing and are read with weight 0, so
-    // a far particle that has one at a multi-field node is still exact on the fast path.) A little
-    // slack covers the rounding of the weights at the edge of the support; at most kReach.
+    // a far particle that has one at a multi-field node is still exact on the fast path; and no line
+    // from a far particle to a node of its stencil or of a loaded face, at most 1.5 cells away, can
+    // reach a segment, so field_of's -1 for it is the classification's answer.) A little slack
+    // covers the rounding of the weights at the edge of the support; at most kReach.
     double r = 1.0;
     if constexpr (SF::K == 3) {
       double lmax = 0.5;
