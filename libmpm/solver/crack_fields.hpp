@@ -8,10 +8,10 @@
 // as in NairnMPM. A pair that would need a fifth field is counted and reported, and its particle
 // then uses the node's ordinary field.
 //
-// Cost model: a per-step spatial index maps each cell to the crack segments within 4 cells of it.
-// Particles in cells with no entry ("far" particles) can neither cross a crack nor touch a
-// multi-field node, so they keep the stepper's single-field fast path; only "near" particles take
-// the paths here.
+// Cost model: a per-step spatial index maps each cell to the crack segments within kReach cells of
+// it. Particles farther than near_reach_ from every segment of their cell's entries ("far"
+// particles) can neither cross a crack nor touch a multi-field node with a non-zero weight, so they
+// keep the stepper's single-field fast path; only "near" particles take the paths here.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -59,6 +59,21 @@ class CrackFields {
     area0_.resize(P_.size());
     for (const auto& b : m.bodies)
       for (std::size_t p = b.first; p < b.first + b.count; ++p) area0_[p] = P_.volume0[p] / b.thickness;
+    // A node has a non-zero weight for a particle within r cells of it on each axis: r = 1 (linear),
+    // 1 + half-width (uGIMP). A multi-field node's field comes from a particle-node line that meets a
+    // segment, so that segment point lies within r of the node, and a particle weighting the node
+    // lies within 2 r of it. (Nodes of zero weight receive nothing and are read with weight 0, so
+    // a far particle that has one at a multi-field node is still exact on the fast path; and no line
+    // from a far particle to a node of its stencil or of a loaded face, at most 1.5 cells away, can
+    // reach a segment, so field_of's -1 for it is the classification's answer.) A little slack
+    // covers the rounding of the weights at the edge of the support; at most kReach.
+    double r = 1.0;
+    if constexpr (SF::K == 3) {
+      double lmax = 0.5;
+      if (!P_.half_width.empty()) lmax = *std::max_element(P_.half_width.begin(), P_.half_width.end());
+      r += std::clamp(lmax, 0.0, 0.5);
+    }
+    near_reach_ = std::min(static_cast<double>(kReach), 2.0 * r + 1e-6) * G_.h;
   }
 
   bool active() const { return !cracks_.empty(); }
@@ -81,20 +96,30 @@ class CrackFields {
     for (auto& c : cracks_) c.update_extent();
     build_index();
   }
-  // Is a particle at x near a crack: in a cell with index entries? The index's cell box first, so
-  // that most particles cost a few comparisons and no look-up.
+  // Is a particle at x near a crack: in a cell with index entries, within near_reach_ of the box of
+  // one of them? The index's cell box first, so that most particles cost a few comparisons and no
+  // look-up.
   auto near_test() const {
     // Everything by value: the caller's flag stores (uint8_t) could otherwise alias these members
     // and force reloads in its loop.
     return [ox = G_.origin.x(), oy = G_.origin.y(), inv_h = inv_h_, lo0 = box_lo_[0], hi0 = box_hi_[0],
-            lo1 = box_lo_[1], hi1 = box_hi_[1], ny = static_cast<int64_t>(cells_[1]),
-            head = cell_head_.data()](const V& x) -> uint8_t {
+            lo1 = box_lo_[1], hi1 = box_hi_[1], ny = static_cast<int64_t>(cells_[1]), head = cell_head_.data(),
+            entries = entries_.data(), reach = near_reach_](const V& x) -> uint8_t {
       const double fx = (x.x() - ox) * inv_h, fy = (x.y() - oy) * inv_h;
       if (!(fx >= lo0 && fx < hi0 && fy >= lo1 && fy < hi1)) return 0;
-      return head[static_cast<int64_t>(fx) * ny + static_cast<int64_t>(fy)] >= 0;  // = cell_of's cell
+      // (= cell_of's cell)
+      for (int32_t e = head[static_cast<int64_t>(fx) * ny + static_cast<int64_t>(fy)]; e >= 0; e = entries[e].next) {
+        const Entry& en = entries[e];
+        if (x.x() >= en.lo.x() - reach && x.x() <= en.hi.x() + reach && x.y() >= en.lo.y() - reach &&
+            x.y() <= en.hi.y() + reach)
+          return 1;
+      }
+      return 0;
     };
   }
   void prepare_fields(bool flags_changed) {
+    side_fields_.resize(cracks_.size());
+    side_valid_.assign(cracks_.size(), 0);
     if (flags_changed) collect_near_particles();
     classify_pairs();
     allocate_fields();
@@ -316,7 +341,8 @@ class CrackFields {
   // opening in a plate at rest (docs/validation.md, 2D cracks item 4). A free end (an edge crack's
   // mouth, no material ahead) keeps following its sides.
   void move_cracks(double dt) {
-    for (auto& c : cracks_) {
+    for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
+      crack::Crack2D& c = cracks_[ci];
       const std::size_t np = c.points.size();
       std::vector<V> vm(np), va(np), vb(np);
       for (std::size_t i = 0; i < np; ++i) {
@@ -326,11 +352,8 @@ class CrackFields {
           va[i] = vb[i] = vcm;
           continue;
         }
-        const V nl = left_normal(c, i);
-        // The probes sit just off the crack line itself, not off the surfaces: a surface that has
-        // moved across the line (faces pressed together) must keep following its own side's field.
-        va[i] = side_velocity(c.above[i], c.points[i] + kProbe * G_.h * nl, vcm);
-        vb[i] = side_velocity(c.below[i], c.points[i] - kProbe * G_.h * nl, vcm);
+        va[i] = side_velocity(ci, i, 0, vcm);
+        vb[i] = side_velocity(ci, i, 1, vcm);
       }
       for (std::size_t i = 0; i < np; ++i) {
         c.points[i] += dt * vm[i];
@@ -339,6 +362,8 @@ class CrackFields {
         if (is_tip(c, i)) c.above[i] = c.below[i] = c.points[i];
       }
       c.update_extent();
+      // Every crack's lines may cross this one, which has moved: the next crack classifies afresh.
+      std::fill(side_valid_.begin(), side_valid_.end(), 0);
     }
   }
 
@@ -361,8 +386,8 @@ class CrackFields {
         if (is_tip(c, i)) continue;  // its faces meet by definition (move_cracks): no gap to close
         const V nl = left_normal(c, i);
         const V vcm = cm_velocity(c.points[i]);
-        const V va = side_velocity(c.above[i], c.points[i] + kProbe * G_.h * nl, vcm);
-        const V vb = side_velocity(c.below[i], c.points[i] - kProbe * G_.h * nl, vcm);
+        const V va = side_velocity(ci, i, 0, vcm);
+        const V vb = side_velocity(ci, i, 1, vcm);
         if ((c.above[i] - c.below[i] + dt * (va - vb)).dot(nl) > 0.0) continue;
         auto flag = [&](int64_t n, double) {
           const int32_t b = node_block_[n];
@@ -744,20 +769,57 @@ class CrackFields {
     return wsum > 0.0 ? V(sum / wsum) : V::Zero();
   }
 
-  // Velocity of the field that a virtual particle at `probe` would use, interpolated at x.
-  V side_velocity(const V& x, const V& probe, const V& fallback) const {
+  // The velocity a surface of crack point i of crack ci follows (side 0: above, 1: below): that of
+  // the field a virtual particle at the point's probe would use, interpolated at the surface.
+  V side_velocity(std::size_t ci, std::size_t i, int side, const V& fallback) {
+    if (!side_valid_[ci]) find_side_fields(ci);
+    const SideFields& sf = side_fields_[ci][2 * i + side];
     V sum = V::Zero();
     double wsum = 0.0;
-    linear_nodes(x, [&](int64_t n, double w) {
-      int32_t seg[2];
-      const uint32_t key = classify(probe, node_position(n), seg);
-      if (key == kOverflow) return;
-      const int32_t xs = key == 0 ? -1 : extra_field(n, key);
-      if (key != 0 && xs < 0) return;  // the node has no field for that side
+    for (int e = 0; e < sf.count; ++e) {
+      const int64_t n = sf.node[e];
+      const int32_t xs = sf.field[e];
+      const double w = sf.w[e];
       const double m = xs < 0 ? grid_.mass[n] : mass_[xs];
       if (m > 0.0) sum += w * (xs < 0 ? grid_.momentum[n] : momentum_[xs]) / m, wsum += w;
-    });
+    }
     return wsum > 0.0 ? V(sum / wsum) : fallback;
+  }
+
+  // The nodes of a surface's cell, with bilinear weights, and the field at each that its probe
+  // selects (nodes without a field for that side left out). They depend on the crack geometry and
+  // the fields' keys, not on the momenta, so they are found once per step (up to three contact
+  // passes and the crack motion read them), and again only after a crack moved.
+  struct SideFields {
+    int count = 0;
+    int64_t node[4];
+    double w[4];
+    int32_t field[4];
+  };
+  void find_side_fields(std::size_t ci) {
+    const crack::Crack2D& c = cracks_[ci];
+    auto& out = side_fields_[ci];
+    out.assign(2 * c.points.size(), SideFields{});
+    for (std::size_t i = 0; i < c.points.size(); ++i) {
+      if (is_tip(c, i)) continue;  // a tip's surfaces follow the point itself
+      const V nl = left_normal(c, i);
+      // The probes sit just off the crack line itself, not off the surfaces: a surface that has
+      // moved across the line (faces pressed together) must keep following its own side's field.
+      for (int side = 0; side < 2; ++side) {
+        const V probe = side == 0 ? V(c.points[i] + kProbe * G_.h * nl) : V(c.points[i] - kProbe * G_.h * nl);
+        SideFields& sf = out[2 * i + side];
+        linear_nodes(side == 0 ? c.above[i] : c.below[i], [&](int64_t n, double w) {
+          int32_t seg[2];
+          const uint32_t key = classify(probe, node_position(n), seg);
+          if (key == kOverflow) return;
+          const int32_t xs = key == 0 ? -1 : extra_field(n, key);
+          if (key != 0 && xs < 0) return;  // the node has no field for that side
+          sf.node[sf.count] = n, sf.w[sf.count] = w, sf.field[sf.count] = xs;
+          ++sf.count;
+        });
+      }
+    }
+    side_valid_[ci] = 1;
   }
 
   // The four nodes of x's cell with bilinear weights (massless crack particles have no size).
@@ -783,6 +845,7 @@ class CrackFields {
   std::array<std::size_t, 2> stride_;
   double inv_h_;
   int cells_[2];
+  double near_reach_;  // a particle is near when within this distance of an index entry's box
   std::vector<double> area0_;
 
   std::vector<int32_t> cell_head_;
@@ -809,6 +872,8 @@ class CrackFields {
   std::vector<V> momentum_, force_, disp_, normal_, disp0_, normals_next_;
   std::vector<NodeKinematics<2>> xkin_;
   std::vector<uint8_t> closing_;  // per block and crack: a crack point's faces close (contact())
+  std::vector<std::vector<SideFields>> side_fields_;  // per crack, two per point (side_velocity())
+  std::vector<uint8_t> side_valid_;                   // per crack: side_fields_ are up to date
   long overflow_ = 0;
 };
 

@@ -173,17 +173,26 @@ class MpmStepper final : public Stepper<Dim> {
 
   // A pass over the particles near cracks (k indexes the crack module's near list): gather(k) reads
   // nodes and writes only its own particle, scatter(k) adds into nodes, and no gather reads what a
-  // scatter writes. The gathers run first, in parallel when there are enough (the usual 8 192: with
-  // 2 threads on a loaded 2-core machine, ~6 500 near particles in parallel cost more than they
-  // saved, through the three extra fork/joins per step), then the scatters
-  // serially in list order, so every node sums its contributions in the same order whatever the
-  // thread count. (One code path for any thread count: fusing the two loops when serial would let
-  // the compiler contract multiply-adds differently and break 1-vs-2-thread bit identity.)
+  // scatter writes. Below kParallelNear near particles (with 2 threads on a loaded 2-core machine,
+  // ~6 500 near particles in parallel cost more than they saved, through the three extra fork/joins
+  // per step) both run in one serial loop, particle by particle (the particle's data are still in
+  // cache for its scatter); from kParallelNear on, the gathers run first, in parallel, then the
+  // scatters serially in list order. Either way every node sums its contributions in the same
+  // order, and the choice depends on the count alone, never on the thread count: the two forms
+  // may contract multiply-adds differently, so 1 and 2 threads must take the same one.
+  static constexpr std::size_t kParallelNear = 8192;
   template <class Gather, class Scatter>
   void near_pass(Gather&& gather, Scatter&& scatter) {
     if constexpr (Dim == 2) {
       const std::size_t nn = cf_->near_list().size();
-#pragma omp parallel for schedule(static) if (worth_parallel(nn))
+      if (nn < kParallelNear) {
+        for (std::size_t k = 0; k < nn; ++k) {
+          gather(k);
+          scatter(k);
+        }
+        return;
+      }
+#pragma omp parallel for schedule(static) if (omp_get_max_threads() > 1)
       for (std::size_t k = 0; k < nn; ++k) gather(k);
       for (std::size_t k = 0; k < nn; ++k) scatter(k);
     }
