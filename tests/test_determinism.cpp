@@ -48,8 +48,9 @@ TEST(Determinism, BeamImpactOneVsTwoThreads) {
 }
 
 TEST(Determinism, CrackedDcbOneVsTwoThreads) {
-  // The DCB with its explicit crack, refined so that more than 8192 particles are near the crack:
-  // the crack paths then run their gathers in parallel (scatters stay serial, in list order).
+  // The DCB with its explicit crack, refined so that more than kParallelNear (1024) particles are
+  // near the crack: the crack paths then run their gathers in parallel (scatters stay serial, in list
+  // order).
   nlohmann::json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");
   s["grid"]["cell_size"] = 0.5;
   s["cracks"][0]["segment_length"] = 0.5;

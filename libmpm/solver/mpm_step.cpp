@@ -173,14 +173,17 @@ class MpmStepper final : public Stepper<Dim> {
 
   // A pass over the particles near cracks (k indexes the crack module's near list): gather(k) reads
   // nodes and writes only its own particle, scatter(k) adds into nodes, and no gather reads what a
-  // scatter writes. Below kParallelNear near particles (with 2 threads on a loaded 2-core machine,
-  // ~6 500 near particles in parallel cost more than they saved, through the three extra fork/joins
-  // per step) both run in one serial loop, particle by particle (the particle's data are still in
-  // cache for its scatter); from kParallelNear on, the gathers run first, in parallel, then the
+  // scatter writes. Below kParallelNear near particles both run in one serial loop, particle by
+  // particle (the particle's data are still in cache for its scatter; a few hundred particles do not
+  // pay for the fork/joins); from kParallelNear on, the gathers run first, in parallel, then the
   // scatters serially in list order. Either way every node sums its contributions in the same
   // order, and the choice depends on the count alone, never on the thread count: the two forms
   // may contract multiply-adds differently, so 1 and 2 threads must take the same one.
-  static constexpr std::size_t kParallelNear = 8192;
+  // (0.25 mm DCB benchmark, ~4 000 near particles, idle 2-core machine: with the threshold at 8192
+  // the 2-thread crack overhead was +9.8 %, at 1024 +6.9 / +7.3 %; 1 thread unchanged within the
+  // noise. On a loaded machine (earlier) ~6 500 near particles in parallel cost more than they saved.
+  // Scattering by strips of nodes in parallel was tried: no gain measurable through the noise.)
+  static constexpr std::size_t kParallelNear = 1024;
   template <class Gather, class Scatter>
   void near_pass(Gather&& gather, Scatter&& scatter) {
     if constexpr (Dim == 2) {
