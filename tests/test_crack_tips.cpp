@@ -129,17 +129,9 @@ struct KField {
   }
 };
 
-// J of the exact K field, sampled on the particles and evaluated as in a run: the contour's error
-// is only the extrapolation to the grid and the midpoint rule (eqs. 36-38). Straight and inclined
-// cracks.
-class ExactField : public ::testing::TestWithParam<int> {};
-
-TEST_P(ExactField, EvaluatorRecoversK) {
-  // The crack runs into the tip at `angle` degrees to x; the field is Williams' in the tip frame.
-  const double angle = GetParam() * kPi / 180;
-  const Vec<2> e1(std::cos(angle), std::sin(angle)), e2(-e1.y(), e1.x());
-  const Vec<2> tip(0.5e-3, 0.25e-3 * (GetParam() != 0));
-  const Vec<2> from_mm = (tip - 21e-3 * e1) * 1e3, tip_mm = tip * 1e3;
+// A 40 mm plane-strain plate (1 mm cells, linear) with one crack from `from_mm` to the tip `tip_mm`;
+// only the tip end is a crack tip.
+Model<2> williams_plate(const Vec<2>& from_mm, const Vec<2>& tip_mm) {
   json s = {{"units", {{"length", "mm"}, {"stress", "Pa"}, {"density", "g/cm3"}}},
             {"analysis", {{"type", "plane_strain"}}},
             {"grid", {{"cell_size", 1}, {"min", {-25, -25}}, {"max", {25, 25}}}},
@@ -150,23 +142,42 @@ TEST_P(ExactField, EvaluatorRecoversK) {
             {"time", {{"end", 1}}}};
   Model<2> m = build_model<2>(s);
   m.cracks[0].tip[0] = false;
+  return m;
+}
+
+// Displacement, strain, stress and rotation of the field f (given in the tip frame R: columns e1, e2)
+// on every particle; velocities untouched.
+void impose_field(Model<2>& m, const KField& f, const Mat<2>& R, const Vec<2>& tip) {
+  const double mu = f.mu, nu = f.nu, lam = 2 * mu * nu / (1 - 2 * nu);
+  auto& P = m.particles;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Vec<2> xl = R.transpose() * (P.x[p] - tip);
+    const Mat<2> g = R * f.grad_u(xl) * R.transpose();
+    const double exx = g(0, 0), eyy = g(1, 1), exy = 0.5 * (g(0, 1) + g(1, 0)), tr = exx + eyy;
+    P.u[p] = R * f.u(xl);
+    P.strain[p] << exx, eyy, 0, exy;
+    P.stress[p] << lam * tr + 2 * mu * exx, lam * tr + 2 * mu * eyy, lam * tr, 2 * mu * exy;
+    P.rotation[p] = 0.5 * (g(1, 0) - g(0, 1));
+  }
+}
+
+// J of the exact K field, sampled on the particles and evaluated as in a run: the contour's error
+// is only the extrapolation to the grid and the midpoint rule (eqs. 36-38). Straight and inclined
+// cracks.
+class ExactField : public ::testing::TestWithParam<int> {};
+
+TEST_P(ExactField, EvaluatorRecoversK) {
+  // The crack runs into the tip at `angle` degrees to x; the field is Williams' in the tip frame.
+  const double angle = GetParam() * kPi / 180;
+  const Vec<2> e1(std::cos(angle), std::sin(angle)), e2(-e1.y(), e1.x());
+  const Vec<2> tip(0.5e-3, 0.25e-3 * (GetParam() != 0));
+  Model<2> m = williams_plate((tip - 21e-3 * e1) * 1e3, tip * 1e3);
   const double E = 1e5, nu = 0.3, mu = E / (2 * (1 + nu));
   Mat<2> R;  // tip frame -> global
   R.col(0) = e1, R.col(1) = e2;
   for (const auto& [KI, KII] : {std::pair{1.0, 0.0}, std::pair{0.0, 1.0}, std::pair{1.0, 0.5}}) {
-    const KField f{KI, KII, mu, nu};
-    auto& P = m.particles;
-    for (std::size_t p = 0; p < P.size(); ++p) {
-      const Vec<2> xl = R.transpose() * (P.x[p] - tip);
-      const Mat<2> g = R * f.grad_u(xl) * R.transpose();
-      const double exx = g(0, 0), eyy = g(1, 1), exy = 0.5 * (g(0, 1) + g(1, 0));
-      const double lam = 2 * mu * nu / (1 - 2 * nu), tr = exx + eyy;
-      P.u[p] = R * f.u(xl);
-      P.strain[p] << exx, eyy, 0, exy;
-      P.stress[p] << lam * tr + 2 * mu * exx, lam * tr + 2 * mu * eyy, lam * tr, 2 * mu * exy;
-      P.rotation[p] = 0.5 * (g(1, 0) - g(0, 1));
-      P.v[p].setZero();
-    }
+    impose_field(m, KField{KI, KII, mu, nu}, R, tip);
+    for (auto& v : m.particles.v) v.setZero();
     for (auto shape : {crack::TipSettings::Contour::Circle, crack::TipSettings::Contour::Rectangle})
     for (double radius : {2.0, 3.0, 4.0}) {
       crack::TipSettings ts;
@@ -199,28 +210,10 @@ INSTANTIATE_TEST_SUITE_P(CrackAngles, ExactField, ::testing::Values(0, 30, 45),
 // contour's kinetic term changes by the integral of rho V.v n, which only eq. 33 cancels, and only
 // in the continuum.)
 TEST(CrackTipJ, IsUnchangedByAUniformVelocity) {
-  json s = {{"units", {{"length", "mm"}, {"stress", "Pa"}, {"density", "g/cm3"}}},
-            {"analysis", {{"type", "plane_strain"}}},
-            {"grid", {{"cell_size", 1}, {"min", {-25, -25}}, {"max", {25, 25}}}},
-            {"mpm", {{"shape_function", "linear"}}},
-            {"materials", {test::material("m", 1e5, 0.3, 1.5)}},
-            {"bodies", {{{"name", "plate"}, {"material", "m"}, {"shape", {{"type", "rectangle"}, {"min", {-20, -20}}, {"max", {20, 20}}}}}}},
-            {"cracks", {{{"name", "c"}, {"from", {-21, 0}}, {"to", {0.5, 0}}, {"segment_length", 0.5}}}},
-            {"time", {{"end", 1}}}};
-  Model<2> m = build_model<2>(s);
-  m.cracks[0].tip[0] = false;
-  const double mu = 1e5 / 2.6, nu = 0.3, lam = 2 * mu * nu / (1 - 2 * nu);
-  const KField f{1.0, 0.3, mu, nu};
-  auto& P = m.particles;
   const Vec<2> tip(0.5e-3, 0.0);
-  for (std::size_t p = 0; p < P.size(); ++p) {
-    const Mat<2> g = f.grad_u(P.x[p] - tip);
-    const double exx = g(0, 0), eyy = g(1, 1), exy = 0.5 * (g(0, 1) + g(1, 0)), tr = exx + eyy;
-    P.u[p] = f.u(P.x[p] - tip);
-    P.strain[p] << exx, eyy, 0, exy;
-    P.stress[p] << lam * tr + 2 * mu * exx, lam * tr + 2 * mu * eyy, lam * tr, 2 * mu * exy;
-    P.rotation[p] = 0.5 * (g(1, 0) - g(0, 1));
-  }
+  Model<2> m = williams_plate(Vec<2>(-21, 0), tip * 1e3);
+  impose_field(m, KField{1.0, 0.3, 1e5 / 2.6, 0.3}, Mat<2>::Identity(), tip);
+  auto& P = m.particles;
   const auto J_with = [&](const Vec<2>& V, bool volume) {
     for (std::size_t p = 0; p < P.size(); ++p)  // a non-uniform field (K of the order of W), plus V
       P.v[p] = 5e-3 * Vec<2>(std::sin(300 * P.x[p].y()), std::cos(200 * P.x[p].x())) + V;
