@@ -613,16 +613,17 @@ InclinedResult inclined_crack(const InclinedSetup& c, const std::vector<crack::T
   while (st->time() < m.end_time - 1e-9 * m.dt) EXPECT_FALSE(st->step());
   InclinedResult r;
   for (const auto& ts : settings) r.tips.push_back(st->crack_tip_parameters(ts));
-  // Griffith's opening in plane stress: (4 / E) sqrt(a^2 - x^2) times sigma_n = sigma cos^2 beta
-  // (normal) or tau = sigma sin beta cos beta (tangential).
+  // Griffith's opening in plane stress: (4 / E) sqrt(a^2 - x^2) times the remote normal or shear
+  // stress on the crack line.
   const auto& ck = m.cracks[0];
+  const Vec<2> load = inclined_crack_loads(c);
   for (std::size_t i = 0; i < ck.points.size(); ++i) {
     const double x = (ck.points[i] - Vec<2>(0, c.offset * h * 1e-3)).norm() * 1e3 / a;  // crack points move little
     const double g = 4 * 1e6 / E * std::sqrt(std::max(0.0, 1 - x * x)) * a * 1e-3;
     const Vec<2> o = io::crack_opening(ck, i);
     r.s.push_back(x);
-    const Vec<2> st = inclined_crack_loads(c);
-    r.opening_ratio.push_back(Vec<2>(st.x() != 0 ? o.x() / (g * st.x()) : 0.0, st.y() != 0 ? o.y() / (g * st.y()) : 0.0));
+    r.opening_ratio.push_back(
+        Vec<2>(load.x() != 0 ? o.x() / (g * load.x()) : 0.0, load.y() != 0 ? o.y() / (g * load.y()) : 0.0));
   }
   return r;
 }
@@ -681,7 +682,8 @@ TEST(MixedModeStudy, DISABLED_Run) {
   }
   const auto r = inclined_crack(c, ts);
   const double K0 = 1e6 * std::sqrt(kPi * c.a_cells * 1e-3);
-  const double KI = K0 * inclined_crack_loads(c).x(), KII = K0 * inclined_crack_loads(c).y();
+  const Vec<2> load = inclined_crack_loads(c);
+  const double KI = K0 * load.x(), KII = K0 * load.y();
   const double J = (KI * KI + KII * KII) / 1e9;
   std::printf("beta %g a %g cells plate %g a sf %s transits %g contact %s%s offset %g\n", c.beta_deg, c.a_cells,
               c.plate_over_a, c.shape_function.c_str(), c.transits, c.contact.c_str(), c.shear ? " SHEAR" : "", c.offset);

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <string>
 #include <array>
 #include <map>
@@ -236,8 +235,8 @@ MotionDifference motion_difference(const MotionRun& rest, const MotionRun& movin
 // h = 1 mm, a = 6 mm, shrinking as sqrt(h). The convergence study (DISABLED_ConvergenceStudy,
 // docs/validation.md) finds 8.3 / 6.1 / 5.3 % at 1 / 0.5 / 0.25 mm over the opening phase (translation
 // alone 8.6 / 8.2 / 5.4 %), under the bound at every cell size, though converging more slowly (order
-// about 0.33). K_I and J are not compared: their differences stall at 6-7 % (eq. 33, 2-cell contour)
-// against the effective-tip estimate h / (4a) = 1 % at 0.25 mm (docs/validation.md).
+// about 0.33). K_I and J are not compared: their differences stall well above the effective-tip
+// estimate h / (4a) = 1 % at 0.25 mm (figures in docs/validation.md).
 double opening_tolerance(double h, double a) { return std::sqrt(h / (8 * a)); }
 
 // Moving/rotating vs resting plate over 0-end_ms with the given contact detection: prints the

@@ -121,6 +121,9 @@ static void warn_contour_meets_cracks(const Model<2>& m, const crack::TipSetting
   const double h = m.grid.h;
   const crack::TipFrame f = crack::tip_frame(c, end);
   const double reach = s.radius * h * std::sqrt(2.0);  // the contour's farthest point from the tip
+  // Arc length of the tip's own crack from its start to each vertex.
+  std::vector<double> arc(c.points.size(), 0.0);
+  for (std::size_t j = 1; j < c.points.size(); ++j) arc[j] = arc[j - 1] + (c.points[j] - c.points[j - 1]).norm();
   for (const auto& o : m.cracks)
     for (std::size_t i = 0; i + 1 < o.points.size(); ++i) {
       const Vec<2> a = o.points[i], b = o.points[i + 1];
@@ -131,15 +134,8 @@ static void warn_contour_meets_cracks(const Model<2>& m, const crack::TipSetting
         // The tip's own crack runs into the contour along its last stretch: skip the points on it
         // within the contour's reach of the tip, measured along the crack.
         if (&o == &c) {
-          const std::size_t last = o.points.size() - 1;
-          double along = 0.0;  // distance from the tip along the polyline to x
-          if (end == 1) {
-            along = (o.points[i + 1] - x).norm();
-            for (std::size_t j = i + 1; j < last; ++j) along += (o.points[j + 1] - o.points[j]).norm();
-          } else {
-            along = (x - o.points[i]).norm();
-            for (std::size_t j = 0; j < i; ++j) along += (o.points[j + 1] - o.points[j]).norm();
-          }
+          const double from_start = arc[i] + (x - a).norm();  // distance from the tip along the crack
+          const double along = end == 1 ? arc.back() - from_start : from_start;
           if (along <= reach + 1e-9 * h) continue;
         }
         inside = crack::inside_contour(f, s, h, x);

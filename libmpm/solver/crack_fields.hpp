@@ -527,15 +527,20 @@ class CrackFields {
     crack::FieldKeyBuilder b;
     for (int32_t e = cell_head_[cell]; e >= 0; e = entries_[e].next) {
       const Entry& en = entries_[e];
-      const crack::Crack2D& c = cracks_[en.crack];
-      if (!crack::extent_overlaps(c, xp, xn)) continue;  // Subtask 1
-      std::size_t s = 0;
-      const crack::Side side =
-          crack::polyline_crossing(c.points.data() + en.seg_lo, static_cast<std::size_t>(en.seg_hi - en.seg_lo + 2),
-                                   xp, xn, &s);
-      if (side != crack::Side::None && !b.add(en.crack, side, en.seg_lo + static_cast<int32_t>(s))) return kOverflow;
+      if (!add_crossing(b, en.crack, en.seg_lo, en.seg_hi, xp, xn)) return kOverflow;
     }
     return b.key(seg);
+  }
+
+  // Adds to b the crossing of the line xp -> xn with segments lo..hi of crack `crack`, if any;
+  // false when that is a third crossed crack (the key overflows).
+  bool add_crossing(crack::FieldKeyBuilder& b, int32_t crack, int32_t lo, int32_t hi, const V& xp, const V& xn) const {
+    const crack::Crack2D& c = cracks_[crack];
+    if (!crack::extent_overlaps(c, xp, xn)) return true;  // Subtask 1
+    std::size_t s = 0;
+    const crack::Side side =
+        crack::polyline_crossing(c.points.data() + lo, static_cast<std::size_t>(hi - lo + 2), xp, xn, &s);
+    return side == crack::Side::None || b.add(crack, side, lo + static_cast<int32_t>(s));
   }
 
   // An index entry narrowed for one particle: segments lo..hi of the crack (none when lo > hi).
@@ -549,13 +554,7 @@ class CrackFields {
     crack::FieldKeyBuilder b;
     for (int e = 0; e < nsub; ++e) {
       const SubRange& sr = sub[e];
-      if (sr.lo > sr.hi) continue;
-      const crack::Crack2D& c = cracks_[sr.crack];
-      if (!crack::extent_overlaps(c, xp, xn)) continue;  // Subtask 1
-      std::size_t s = 0;
-      const crack::Side side =
-          crack::polyline_crossing(c.points.data() + sr.lo, static_cast<std::size_t>(sr.hi - sr.lo + 2), xp, xn, &s);
-      if (side != crack::Side::None && !b.add(sr.crack, side, sr.lo + static_cast<int32_t>(s))) return kOverflow;
+      if (sr.lo <= sr.hi && !add_crossing(b, sr.crack, sr.lo, sr.hi, xp, xn)) return kOverflow;
     }
     return b.key(seg);
   }

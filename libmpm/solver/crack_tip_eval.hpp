@@ -58,6 +58,18 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
   const double contour_extent = ts.radius * h * (ts.contour == crack::TipSettings::Contour::Circle ? 1.0 : std::sqrt(2.0));
   const double reach = contour_extent + 4.5 * h;
 
+  // f(node, bilinear weight) for the four nodes of x's cell; false (no call) when the cell is not
+  // inside the grid.
+  const auto for_cell_nodes = [&](const V& x, auto&& f) {
+    const double fx = (x.x() - G.origin.x()) * inv_h, fy = (x.y() - G.origin.y()) * inv_h;
+    const int i = static_cast<int>(std::floor(fx)), j = static_cast<int>(std::floor(fy));
+    if (i < 0 || j < 0 || i + 1 >= G.nodes[0] || j + 1 >= G.nodes[1]) return false;
+    const double rx = fx - i, ry = fy - j;
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        f(static_cast<int64_t>(i + a) * stride[0] + (j + b), (a ? rx : 1.0 - rx) * (b ? ry : 1.0 - ry));
+    return true;
+  };
   // Small-strain displacement gradient of particle p: its strain plus the integrated rotation.
   const auto grad_u = [&](std::size_t p) {
     const auto& e = P.strain[p];
@@ -124,47 +136,34 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       // does not cancel). For a crack at rest this changes nothing.
       V v_tip = V::Zero();
       {
-        const double fx = (f.tip.x() - G.origin.x()) * inv_h, fy = (f.tip.y() - G.origin.y()) * inv_h;
-        const int i = static_cast<int>(std::floor(fx)), j = static_cast<int>(std::floor(fy));
         double wsum = 0.0;
-        for (int a = 0; a < 2; ++a)
-          for (int b = 0; b < 2; ++b) {
-            const int64_t n = static_cast<int64_t>(i + a) * stride[0] + (j + b);
-            const double w = (a ? fx - i : 1.0 - (fx - i)) * (b ? fy - j : 1.0 - (fy - j));
-            if (i + a < 0 || j + b < 0 || i + a >= G.nodes[0] || j + b >= G.nodes[1]) continue;
-            double mn = 0.0;
-            V pn = V::Zero();
-            for (auto it = sums.lower_bound({n, 0u}); it != sums.end() && it->first.first == n; ++it)
-              mn += it->second.m, pn += it->second.v;
-            if (!(mn > 0.0) || w == 0.0) continue;
-            v_tip += w * pn / mn;
-            wsum += w;
-          }
+        for_cell_nodes(f.tip, [&](int64_t n, double w) {
+          double mn = 0.0;
+          V pn = V::Zero();
+          for (auto it = sums.lower_bound({n, 0u}); it != sums.end() && it->first.first == n; ++it)
+            mn += it->second.m, pn += it->second.v;
+          if (!(mn > 0.0) || w == 0.0) return;
+          v_tip += w * pn / mn;
+          wsum += w;
+        });
         if (wsum > 0.0) v_tip /= wsum;
       }
 
       // Eq. 37: the field values a particle at x would see (bilinear weights of x's cell); energy is
       // W + K with K relative to the tip.
       auto interpolate = [&](const V& x, detail::TipFieldSums& q) {
-        const double fx = (x.x() - G.origin.x()) * inv_h, fy = (x.y() - G.origin.y()) * inv_h;
-        const int i = static_cast<int>(std::floor(fx)), j = static_cast<int>(std::floor(fy));
-        if (i < 0 || j < 0 || i + 1 >= G.nodes[0] || j + 1 >= G.nodes[1]) return false;
-        const double rx = fx - i, ry = fy - j;
         q = detail::TipFieldSums{};
         double wsum = 0.0;
-        for (int a = 0; a < 2; ++a)
-          for (int b = 0; b < 2; ++b) {
-            const int64_t n = static_cast<int64_t>(i + a) * stride[0] + (j + b);
-            const double w = (a ? rx : 1.0 - rx) * (b ? ry : 1.0 - ry);
-            const auto it = sums.find({n, crack::field_key(m.cracks, x, node_pos(n))});
-            if (w == 0.0 || it == sums.end() || !(it->second.m > 0.0)) continue;
-            const auto& s = it->second;
-            const double k = w / s.m;
-            const double kinetic = 0.5 * (s.rho_vv - 2.0 * v_tip.dot(s.rho_v) + s.rho * v_tip.squaredNorm());
-            q.energy += k * (s.energy + kinetic), q.stress += k * s.stress, q.grad_u += k * s.grad_u, q.u += k * s.u;
-            wsum += w;
-          }
-        if (!(wsum > 0.0)) return false;  // outside the material
+        const bool in_grid = for_cell_nodes(x, [&](int64_t n, double w) {
+          const auto it = sums.find({n, crack::field_key(m.cracks, x, node_pos(n))});
+          if (w == 0.0 || it == sums.end() || !(it->second.m > 0.0)) return;
+          const auto& s = it->second;
+          const double k = w / s.m;
+          const double kinetic = 0.5 * (s.rho_vv - 2.0 * v_tip.dot(s.rho_v) + s.rho * v_tip.squaredNorm());
+          q.energy += k * (s.energy + kinetic), q.stress += k * s.stress, q.grad_u += k * s.grad_u, q.u += k * s.u;
+          wsum += w;
+        });
+        if (!in_grid || !(wsum > 0.0)) return false;  // outside the grid or the material
         q.energy /= wsum, q.stress /= wsum, q.grad_u /= wsum, q.u /= wsum;
         q.m = 1.0;
         return true;
