@@ -22,6 +22,7 @@
 
 #include "libmpm/scene/scene.hpp"
 #include "libmpm/solver/mpm_step.hpp"
+#include "libmpm/solver/step_timers.hpp"
 
 using namespace cleave;
 
@@ -45,13 +46,16 @@ struct Run {
     stepper = make_stepper<2>(model);
     for (int i = 0; i < 5; ++i) stepper->step();  // warm-up: first contacts, allocations
   }
+  double task_seconds[step_timers::kSlots] = {};  // with -DCLEAVE_STEP_TIMERS=ON: per task, timed blocks
   // ns per particle-step of `steps` steps: wall clock and process CPU time.
   std::pair<double, double> time(int steps) {
+    step_timers::reset();
     const double c0 = cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
     for (int i = 0; i < steps; ++i) stepper->step();
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double c = cpu_seconds() - c0, per = 1e9 / (double(steps) * double(model.particles.size()));
+    for (int k = 0; k < step_timers::kSlots; ++k) task_seconds[k] += step_timers::seconds[k];
     return {s * per, c * per};
   }
 };
@@ -110,5 +114,16 @@ int main(int argc, char** argv) {
               100 * (median(ratio) - 1), 100 * (*std::min_element(ratio.begin(), ratio.end()) - 1),
               100 * (*std::max_element(ratio.begin(), ratio.end()) - 1), 100 * (median(cpu_ratio) - 1), best_with,
               best_without, 100 * (best_with / best_without - 1));
+  if (step_timers::kEnabled) {  // where the difference goes, per task (ms per step)
+    std::printf("task times, ms per step (cracked / uncracked / difference):\n");
+    const double per = 1e3 / (double(steps) * double(reps));
+    double sum[2] = {0, 0};
+    for (int k = 0; k < step_timers::kSlots; ++k) {
+      const double a = cracked.task_seconds[k] * per, b = uncracked.task_seconds[k] * per;
+      sum[0] += a, sum[1] += b;
+      std::printf("  %-16s %8.3f %8.3f %+8.3f\n", step_timers::name(k), a, b, a - b);
+    }
+    std::printf("  %-16s %8.3f %8.3f %+8.3f\n", "total timed", sum[0], sum[1], sum[0] - sum[1]);
+  }
   return 0;
 }

@@ -24,6 +24,7 @@
 #include "libmpm/model/model.hpp"
 #include "libmpm/solver/parallel.hpp"
 #include "libmpm/solver/stencil.hpp"
+#include "libmpm/solver/step_timers.hpp"
 
 namespace cleave {
 
@@ -120,8 +121,15 @@ class CrackFields {
   void prepare_fields(bool flags_changed) {
     side_fields_.resize(cracks_.size());
     side_valid_.assign(cracks_.size(), 0);
-    if (flags_changed) collect_near_particles();
-    classify_pairs();
+    if (flags_changed) {
+      CLEAVE_TIME(NearList);
+      collect_near_particles();
+    }
+    {
+      CLEAVE_TIME(Classify);
+      classify_pairs();
+    }
+    CLEAVE_TIME(Allocate);
     allocate_fields();
   }
 

@@ -12,6 +12,7 @@
 #include "libmpm/solver/crack_tip_eval.hpp"
 #include "libmpm/solver/parallel.hpp"
 #include "libmpm/solver/stencil.hpp"
+#include "libmpm/solver/step_timers.hpp"
 
 namespace cleave {
 namespace {
@@ -85,13 +86,23 @@ class MpmStepper final : public Stepper<Dim> {
     bool ordered = false;
     if constexpr (Dim == 2)
       if (cf_) {  // Task 1, line crossing: fields of the particles near cracks
-        cf_->prepare_index();
-        const bool near_changed = order_.build(P_, G_, inv_h_, cf_->near_flags(), cf_->near_test());
+        {
+          CLEAVE_TIME(CrackIndex);
+          cf_->prepare_index();
+        }
+        bool near_changed;
+        {
+          CLEAVE_TIME(Strips);
+          near_changed = order_.build(P_, G_, inv_h_, cf_->near_flags(), cf_->near_test());
+        }
         cf_->prepare_fields(near_changed);
         skip_ = cf_->near_flags();
         ordered = true;
       }
-    if (!ordered) order_.build(P_, G_, inv_h_);
+    if (!ordered) {
+      CLEAVE_TIME(Strips);
+      order_.build(P_, G_, inv_h_);
+    }
     const double traction_power_before = traction_power();
     const double dts = dt * traits_.fraction;
 
@@ -115,7 +126,10 @@ class MpmStepper final : public Stepper<Dim> {
     }
     if (late_update) stress_pass<true, false, true>(dts);  // Task 6a / 6c
     if constexpr (Dim == 2)
-      if (cf_) cf_->move_cracks(dt);  // Task 7
+      if (cf_) {
+        CLEAVE_TIME(CrackMotion);
+        cf_->move_cracks(dt);  // Task 7
+      }
 
     external_work_ += 0.5 * dt * (traction_power_before + traction_power());
     time_ += dt;
@@ -141,6 +155,7 @@ class MpmStepper final : public Stepper<Dim> {
  private:
   // Task 1: nodal masses and momenta from the particles (eq. 26).
   void task1_extrapolate() {
+    CLEAVE_TIME(Task1Far);
     std::fill(grid_.mass.begin(), grid_.mass.end(), 0.0);
     std::fill(grid_.momentum.begin(), grid_.momentum.end(), Vec<Dim>::Zero());
     order_.scatter([&](std::size_t p) {
@@ -155,6 +170,7 @@ class MpmStepper final : public Stepper<Dim> {
     });
     if constexpr (Dim == 2)
       if (cf_) {
+        CLEAVE_TIME(Task1Near);
         const std::size_t nn = cf_->near_list().size();
         for (std::size_t k = 0; k < nn; ++k) cf_->extrapolate(k, cf_->stencil(k));
       }
@@ -213,7 +229,10 @@ class MpmStepper final : public Stepper<Dim> {
   // Contact at multi-field nodes whenever momenta were (re)computed (Tasks 2 and 6c).
   void crack_contact() {
     if constexpr (Dim == 2)
-      if (cf_) cf_->contact(m_.dt);
+      if (cf_) {
+        CLEAVE_TIME(Contact);
+        cf_->contact(m_.dt);
+      }
   }
 
   // Updating stresses and strains (Subtasks 2-3: velocity gradient eq. 36 from the nodal velocities
@@ -240,14 +259,18 @@ class MpmStepper final : public Stepper<Dim> {
         P_.u[p] += dx_[p];
       }
     };
-    if constexpr (scatter_force) {
-      std::fill(grid_.force.begin(), grid_.force.end(), Vec<Dim>::Zero());
-      order_.scatter(body);
-    } else {
-      for_far_particles(body);
+    {
+      CLEAVE_TIME(StressFar);
+      if constexpr (scatter_force) {
+        std::fill(grid_.force.begin(), grid_.force.end(), Vec<Dim>::Zero());
+        order_.scatter(body);
+      } else {
+        for_far_particles(body);
+      }
     }
     if constexpr (Dim == 2)
       if (cf_) {  // particles near cracks: the same with each pair's velocity field
+        CLEAVE_TIME(StressNear);
         const auto& near = cf_->near_list();
         auto gather = [&](std::size_t k) {  // (stencils: the start-of-step ones, cached)
           const std::size_t p = static_cast<std::size_t>(near[k]);
@@ -278,6 +301,7 @@ class MpmStepper final : public Stepper<Dim> {
 
   // Task 3, grid part: tractions, body force, damping; zero force on prescribed components.
   void finish_forces() {
+    CLEAVE_TIME(Forces);
     for (const auto& t : m_.tractions) {
       const Vec<Dim> tr = t.traction * t.time_function(time_);
       for (std::size_t j = 0; j < t.particles.size(); ++j) {
@@ -338,6 +362,7 @@ class MpmStepper final : public Stepper<Dim> {
 
   // Task 4: p' = p + dt f (eq. 29), and the nodal velocity and acceleration Task 5 gathers.
   void task4_update_momenta(double dt) {
+    CLEAVE_TIME(Task4);
     const std::size_t nn = grid_.mass.size();
 #pragma omp parallel for schedule(static) if (worth_parallel(nn))
     for (std::size_t n = 0; n < nn; ++n) {
@@ -386,14 +411,18 @@ class MpmStepper final : public Stepper<Dim> {
       }
       finish(p, dx);
     };
-    if (reextrapolate) {
-      std::fill(grid_.momentum.begin(), grid_.momentum.end(), Vec<Dim>::Zero());
-      order_.scatter(body);
-    } else {
-      for_far_particles(body);
+    {
+      CLEAVE_TIME(Task5Far);
+      if (reextrapolate) {
+        std::fill(grid_.momentum.begin(), grid_.momentum.end(), Vec<Dim>::Zero());
+        order_.scatter(body);
+      } else {
+        for_far_particles(body);
+      }
     }
     if constexpr (Dim == 2)
       if (cf_) {
+        CLEAVE_TIME(Task5Near);
         if (reextrapolate) cf_->clear_momenta();
         const auto& near = cf_->near_list();
         auto gather = [&](std::size_t k) {
@@ -421,6 +450,7 @@ class MpmStepper final : public Stepper<Dim> {
   }
 
   void apply_momentum_conditions() {
+    CLEAVE_TIME(Conditions);
     const auto& C = m_.conditions;
     for (std::size_t c = 0; c < C.node.size(); ++c)
       for (int d = 0; d < Dim; ++d)
@@ -431,6 +461,7 @@ class MpmStepper final : public Stepper<Dim> {
 
   // Subtask 1: nodal velocities from the latest momenta (eq. 34).
   void nodal_velocities() {
+    CLEAVE_TIME(Conditions);
     const std::size_t nn = grid_.mass.size();
 #pragma omp parallel for schedule(static) if (worth_parallel(nn))
     for (std::size_t n = 0; n < nn; ++n)
