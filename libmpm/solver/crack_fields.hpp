@@ -57,6 +57,7 @@ class CrackFields {
     cell_head_.assign(static_cast<std::size_t>(cells_[0]) * cells_[1], -1);
     node_block_.assign(G_.node_count(), -1);
     near_flag_.assign(P_.size(), 0);
+    near_index_.assign(P_.size(), -1);
     area0_.resize(P_.size());
     for (const auto& b : m.bodies)
       for (std::size_t p = b.first; p < b.first + b.count; ++p) area0_[p] = P_.volume0[p] / b.thickness;
@@ -83,6 +84,8 @@ class CrackFields {
   const uint8_t* near_flags() const { return near_flag_.data(); }
   uint8_t* near_flags() { return near_flag_.data(); }
   const std::vector<int32_t>& near_list() const { return near_; }
+  // Per particle: its index in near_list(), or -1 when it is not near a crack.
+  const int32_t* near_index() const { return near_index_.data(); }
   // The stencil of near particle k (index into near_list()), evaluated once in prepare_fields(): every pass
   // of a step evaluates the shape functions at the start-of-step positions (a pass that moves the
   // particles does so after its last use of them), so one evaluation serves the whole step.
@@ -498,6 +501,7 @@ class CrackFields {
   // The list of near particles, in particle order, from the flags (only when a flag changed): in
   // parallel over fixed chunks, each filled at the offset of a prefix sum of the chunk counts.
   void collect_near_particles() {
+    for (int32_t p : near_) near_index_[p] = -1;
     const std::size_t np = P_.size();
     constexpr std::size_t kChunk = 8192;
     const std::size_t chunks = (np + kChunk - 1) / kChunk;
@@ -518,7 +522,10 @@ class CrackFields {
       std::size_t k = chunk_begin_[c];
       const std::size_t end = std::min(np, (c + 1) * kChunk);
       for (std::size_t p = c * kChunk; p < end; ++p)
-        if (near_flag_[p]) near_[k++] = static_cast<int32_t>(p);
+        if (near_flag_[p]) {
+          near_index_[p] = static_cast<int32_t>(k);
+          near_[k++] = static_cast<int32_t>(p);
+        }
     }
   }
 
@@ -862,6 +869,7 @@ class CrackFields {
 
   std::vector<uint8_t> near_flag_;
   std::vector<int32_t> near_;
+  std::vector<int32_t> near_index_;  // per particle: index in near_, or -1
   std::vector<std::size_t> chunk_begin_;
   std::vector<St> near_st_;
   std::vector<uint8_t> key_any_;   // per near particle: does a key differ from 0 (set by classify_pairs)

@@ -83,6 +83,7 @@ class MpmStepper final : public Stepper<Dim> {
       ftz_threads_ = omp_get_max_threads();
     }
     skip_ = nullptr;
+    near_index_ = nullptr;
     bool ordered = false;
     if constexpr (Dim == 2)
       if (cf_) {  // Task 1, line crossing: fields of the particles near cracks
@@ -97,6 +98,7 @@ class MpmStepper final : public Stepper<Dim> {
         }
         cf_->prepare_fields(near_changed);
         skip_ = cf_->near_flags();
+        near_index_ = cf_->near_index();
         ordered = true;
       }
     if (!ordered) {
@@ -155,10 +157,10 @@ class MpmStepper final : public Stepper<Dim> {
  private:
   // Task 1: nodal masses and momenta from the particles (eq. 26).
   void task1_extrapolate() {
-    CLEAVE_TIME(Task1Far);
+    CLEAVE_TIME(Task1);
     std::fill(grid_.mass.begin(), grid_.mass.end(), 0.0);
     std::fill(grid_.momentum.begin(), grid_.momentum.end(), Vec<Dim>::Zero());
-    order_.scatter([&](std::size_t p) {
+    auto far = [&](std::size_t p) CLEAVE_INLINE {
       St s;
       s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
       const double mp = P_.mass[p];
@@ -167,53 +169,41 @@ class MpmStepper final : public Stepper<Dim> {
         grid_.mass[n] += mp * w;
         grid_.momentum[n] += mv * w;
       });
-    });
+    };
     if constexpr (Dim == 2)
       if (cf_) {
-        CLEAVE_TIME(Task1Near);
-        const std::size_t nn = cf_->near_list().size();
-        for (std::size_t k = 0; k < nn; ++k) cf_->extrapolate(k, cf_->stencil(k));
+        const int32_t* nk = near_index_;
+        return order_.scatter(far, [&](std::size_t p) { cf_->extrapolate(nk[p], cf_->stencil(nk[p])); });
       }
+    order_.scatter(far);
   }
 
-  // body(p) for every particle not near a crack, in parallel (a pass that only gathers; the near
-  // particles take the crack path afterwards).
-  template <class F>
-  void for_far_particles(F&& body) {
-    const std::size_t np = P_.size();
+  // Passes over the particles. The particles near cracks (with cracks present) take a path of
+  // their own, near(k) for near particle k of the crack module's list, which uses each pair's
+  // velocity field; far(p) serves all others.
+  // Scatter passes (far and near add into nodes): in strip order, each strip's near particles after
+  // its far ones (StripOrder::scatter), so the near particles run in parallel too and every node
+  // sums in the same order for any thread count. (Before: the near particles' scatters ran after
+  // all others, serially in list order: 0.5-0.9 ms of a 21 ms step with two threads in the 0.25 mm
+  // DCB benchmark. A test per particle in one loop for both kinds slowed the far path by ~5 %.)
+  template <class Far, class Near>
+  void scatter_pass(Far&& far, Near&& near) {
+    const int32_t* nk = near_index_;
+    order_.scatter(far, [&](std::size_t p) { near(static_cast<std::size_t>(nk[p])); });
+  }
+  // Gather passes (each body writes only its own particle): the far particles, then the near ones,
+  // in one parallel region (a thread that finishes its share of the far ones starts on the near).
+  template <class Far, class Near>
+  void gather_pass(Far&& far, Near&& near) {
+    const std::size_t np = P_.size(), nn = near_index_ ? cf_->near_list().size() : 0;
     const uint8_t* skip = skip_;
-#pragma omp parallel for schedule(static) if (worth_parallel(np))
-    for (std::size_t p = 0; p < np; ++p)
-      if (!skip || !skip[p]) body(p);
-  }
-
-  // A pass over the particles near cracks (k indexes the crack module's near list): gather(k) reads
-  // nodes and writes only its own particle, scatter(k) adds into nodes, and no gather reads what a
-  // scatter writes. Below kParallelNear near particles both run in one serial loop, particle by
-  // particle (the particle's data are still in cache for its scatter; a few hundred particles do not
-  // pay for the fork/joins); from kParallelNear on, the gathers run first, in parallel, then the
-  // scatters serially in list order. Either way every node sums its contributions in the same
-  // order, and the choice depends on the count alone, never on the thread count: the two forms
-  // may contract multiply-adds differently, so 1 and 2 threads must take the same one.
-  // (0.25 mm DCB benchmark, ~4 000 near particles, idle 2-core machine: with the threshold at 8192
-  // the 2-thread crack overhead was +9.8 %, at 1024 +6.9 / +7.3 %; 1 thread unchanged within the
-  // noise. On a loaded machine (earlier) ~6 500 near particles in parallel cost more than they saved.
-  // Scattering by strips of nodes in parallel was tried: no gain measurable through the noise.)
-  static constexpr std::size_t kParallelNear = 1024;
-  template <class Gather, class Scatter>
-  void near_pass(Gather&& gather, Scatter&& scatter) {
-    if constexpr (Dim == 2) {
-      const std::size_t nn = cf_->near_list().size();
-      if (nn < kParallelNear) {
-        for (std::size_t k = 0; k < nn; ++k) {
-          gather(k);
-          scatter(k);
-        }
-        return;
-      }
-#pragma omp parallel for schedule(static) if (omp_get_max_threads() > 1)
-      for (std::size_t k = 0; k < nn; ++k) gather(k);
-      for (std::size_t k = 0; k < nn; ++k) scatter(k);
+#pragma omp parallel if (worth_parallel(np))
+    {
+#pragma omp for schedule(static) nowait
+      for (std::size_t p = 0; p < np; ++p)
+        if (!skip || !skip[p]) far(p);
+#pragma omp for schedule(dynamic, 256)
+      for (std::size_t k = 0; k < nn; ++k) near(k);
     }
   }
 
@@ -241,7 +231,7 @@ class MpmStepper final : public Stepper<Dim> {
   // (Compiled once per combination, so the hot loop carries no flag tests.)
   template <bool update, bool scatter_force, bool move>
   void stress_pass(double dts) {
-    auto body = [&](std::size_t p) {
+    auto body = [&](std::size_t p) CLEAVE_INLINE {
       St s;
       s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
       if constexpr (update) {
@@ -259,20 +249,12 @@ class MpmStepper final : public Stepper<Dim> {
         P_.u[p] += dx_[p];
       }
     };
-    {
-      CLEAVE_TIME(StressFar);
-      if constexpr (scatter_force) {
-        std::fill(grid_.force.begin(), grid_.force.end(), Vec<Dim>::Zero());
-        order_.scatter(body);
-      } else {
-        for_far_particles(body);
-      }
-    }
+    CLEAVE_TIME(Stress);
+    if constexpr (scatter_force) std::fill(grid_.force.begin(), grid_.force.end(), Vec<Dim>::Zero());
     if constexpr (Dim == 2)
       if (cf_) {  // particles near cracks: the same with each pair's velocity field
-        CLEAVE_TIME(StressNear);
         const auto& near = cf_->near_list();
-        auto gather = [&](std::size_t k) {  // (stencils: the start-of-step ones, cached)
+        auto near_body = [&](std::size_t k) CLEAVE_INLINE {  // (stencils: the start-of-step ones, cached)
           const std::size_t p = static_cast<std::size_t>(near[k]);
           if constexpr (update) {
             Mat<Dim> L = Mat<Dim>::Zero();
@@ -282,21 +264,22 @@ class MpmStepper final : public Stepper<Dim> {
             P_.rotation[p] += 0.5 * (L(1, 0) - L(0, 1)) * dts;
             update_stress(p, L, dts);
           }
+          if constexpr (scatter_force) {
+            const Sym<Dim> vs = P_.volume0[p] * P_.stress[p];
+            cf_->for_each_pair(k, cf_->stencil(k), [&](int64_t n, int32_t x, double, const Vec<Dim>& g) {
+              cf_->force(n, x) -= sym_dot<Dim>(vs, g);
+            });
+          }
           if constexpr (move) {
             P_.x[p] += dx_[p];
             P_.u[p] += dx_[p];
           }
         };
-        auto scatter = [&](std::size_t k) {
-          if constexpr (scatter_force) {
-            const Sym<Dim> vs = P_.volume0[near[k]] * P_.stress[near[k]];
-            cf_->for_each_pair(k, cf_->stencil(k), [&](int64_t n, int32_t x, double, const Vec<Dim>& g) {
-              cf_->force(n, x) -= sym_dot<Dim>(vs, g);
-            });
-          }
-        };
-        near_pass(gather, scatter);
+        if constexpr (scatter_force) return scatter_pass(body, near_body);
+        else return gather_pass(body, near_body);
       }
+    if constexpr (scatter_force) order_.scatter(body);
+    else gather_pass(body, [](std::size_t) {});
   }
 
   // Task 3, grid part: tractions, body force, damping; zero force on prescribed components.
@@ -382,7 +365,7 @@ class MpmStepper final : public Stepper<Dim> {
   StepProblem task5_update_particles(double dt, bool reextrapolate, bool move) {
     std::atomic<long> bad{std::numeric_limits<long>::max()};
     // The lowest-numbered bad particle is reported, whatever the thread count.
-    auto finish = [&](std::size_t p, const Vec<Dim>& dx) {
+    auto finish = [&](std::size_t p, const Vec<Dim>& dx) CLEAVE_INLINE {
       if (!P_.v[p].allFinite() || !stencil_inside<Dim, SF>(G_, inv_h_, P_.x[p] + dx)) {
         long cur = bad.load();
         while (static_cast<long>(p) < cur && !bad.compare_exchange_weak(cur, static_cast<long>(p))) {
@@ -395,7 +378,7 @@ class MpmStepper final : public Stepper<Dim> {
         dx_[p] = dx;
       }
     };
-    auto body = [&](std::size_t p) {
+    auto body = [&](std::size_t p) CLEAVE_INLINE {
       St s;
       s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
       Vec<Dim> a = Vec<Dim>::Zero(), v = Vec<Dim>::Zero();
@@ -412,38 +395,38 @@ class MpmStepper final : public Stepper<Dim> {
       finish(p, dx);
     };
     {
-      CLEAVE_TIME(Task5Far);
-      if (reextrapolate) {
-        std::fill(grid_.momentum.begin(), grid_.momentum.end(), Vec<Dim>::Zero());
-        order_.scatter(body);
-      } else {
-        for_far_particles(body);
+      CLEAVE_TIME(Task5);
+      if (reextrapolate) std::fill(grid_.momentum.begin(), grid_.momentum.end(), Vec<Dim>::Zero());
+      bool done = false;
+      if constexpr (Dim == 2)
+        if (cf_) {
+          if (reextrapolate) cf_->clear_momenta();
+          const auto& near = cf_->near_list();
+          auto near_body = [&](std::size_t k) CLEAVE_INLINE {
+            const std::size_t p = static_cast<std::size_t>(near[k]);
+            Vec<Dim> a = Vec<Dim>::Zero(), v = Vec<Dim>::Zero();
+            cf_->for_each_pair_weight(k, cf_->stencil(k), [&](int64_t n, int32_t x, double w) {
+              const auto& kn = cf_->kin(n, x);
+              a += kn.a * w;
+              v += kn.v * w;
+            });
+            P_.v[p] += dt * a;
+            if (reextrapolate) {  // Task 6c
+              const Vec<Dim> mv = P_.mass[p] * P_.v[p];
+              cf_->for_each_pair_weight(k, cf_->stencil(k),
+                                        [&](int64_t n, int32_t x, double w) { cf_->momentum(n, x) += mv * w; });
+            }
+            finish(p, dt * v);
+          };
+          if (reextrapolate) scatter_pass(body, near_body);
+          else gather_pass(body, near_body);
+          done = true;
+        }
+      if (!done) {
+        if (reextrapolate) order_.scatter(body);
+        else gather_pass(body, [](std::size_t) {});
       }
     }
-    if constexpr (Dim == 2)
-      if (cf_) {
-        CLEAVE_TIME(Task5Near);
-        if (reextrapolate) cf_->clear_momenta();
-        const auto& near = cf_->near_list();
-        auto gather = [&](std::size_t k) {
-          const std::size_t p = static_cast<std::size_t>(near[k]);
-          Vec<Dim> a = Vec<Dim>::Zero(), v = Vec<Dim>::Zero();
-          cf_->for_each_pair_weight(k, cf_->stencil(k), [&](int64_t n, int32_t x, double w) {
-            const auto& kn = cf_->kin(n, x);
-            a += kn.a * w;
-            v += kn.v * w;
-          });
-          P_.v[p] += dt * a;
-          finish(p, dt * v);
-        };
-        auto scatter = [&](std::size_t k) {  // Task 6c
-          if (!reextrapolate) return;
-          const Vec<Dim> mv = P_.mass[near[k]] * P_.v[near[k]];
-          cf_->for_each_pair_weight(k, cf_->stencil(k),
-                                    [&](int64_t n, int32_t x, double w) { cf_->momentum(n, x) += mv * w; });
-        };
-        near_pass(gather, scatter);
-      }
     const long b = bad.load();
     if (b == std::numeric_limits<long>::max()) return {};
     return {b, P_.v[b].allFinite() ? "left the grid" : "velocity is not finite (NaN/Inf)"};
@@ -507,7 +490,8 @@ class MpmStepper final : public Stepper<Dim> {
   std::vector<NodeKinematics<Dim>> kin_;
   // 2D explicit cracks: extra velocity fields, contact, crack motion (null without cracks).
   std::unique_ptr<CrackFields<SF>> cf_;
-  const uint8_t* skip_ = nullptr;  // near-crack flags: those particles take the crack paths
+  const uint8_t* skip_ = nullptr;         // near-crack flags: those particles take the crack paths
+  const int32_t* near_index_ = nullptr;  // per particle: index in the crack module's near list, or -1
   std::vector<Vec<Dim>> dx_;
   StripOrder<Dim> order_;
   SchemeTraits traits_;

@@ -17,25 +17,22 @@ enum Slot {
   NearList,        // near-particle list (when a flag changed)
   Classify,        // particle-node line crossing of the near particles
   Allocate,        // extra-field slots
-  Task1Far,        // mass and momentum from the particles away from cracks
-  Task1Near,       // the same for the near particles
+  Task1,           // nodal masses and momenta
   Contact,         // crack contact (Tasks 2 and 6c)
-  StressFar,       // stress update and internal force, particles away from cracks
-  StressNear,      // the same, near particles
+  Stress,          // stress update (Tasks 2 / 6) and internal force (Task 3)
   Forces,          // tractions, body force, damping, prescribed components
   Task4,           // nodal momenta, velocities and accelerations
-  Task5Far,        // particle velocities and positions (and Task 6c momenta), far particles
-  Task5Near,       // the same, near particles
+  Task5,           // particle velocities and positions (and Task 6c momenta)
   Conditions,      // momentum conditions and nodal velocities
   CrackMotion,     // Task 7
   kSlots
 };
 
 inline const char* name(int s) {
-  static const char* names[kSlots] = {"crack index", "strip order",  "near list",    "classification",
-                                      "field slots", "task 1 far",   "task 1 near",  "contact",
-                                      "stress far",  "stress near",  "grid forces",  "task 4",
-                                      "task 5 far",  "task 5 near",  "conditions",   "crack motion"};
+  static const char* names[kSlots] = {"crack index", "strip order", "near list", "classification",
+                                      "field slots", "task 1",      "contact",   "stresses",
+                                      "grid forces", "task 4",      "task 5",    "conditions",
+                                      "crack motion"};
   return names[s];
 }
 
