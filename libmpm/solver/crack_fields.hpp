@@ -100,18 +100,27 @@ class CrackFields {
     for (auto& c : cracks_) c.update_extent();
     build_index();
   }
+  // An entry of the spatial index (build_index).
+  struct Entry {
+    int32_t crack, seg_lo, seg_hi, next;
+    V lo, hi;  // bounding box of the range's vertices seg_lo .. seg_hi + 1
+  };
   // Is a particle at x near a crack: in a cell with index entries, within near_reach_ of the box of
-  // one of them? The index's cell box first, so that most particles cost a few comparisons and no
-  // look-up.
-  auto near_test() const {
-    // Everything by value: the caller's flag stores (uint8_t) could otherwise alias these members
-    // and force reloads in its loop.
-    return [ox = G_.origin.x(), oy = G_.origin.y(), inv_h = inv_h_, lo0 = box_lo_[0], hi0 = box_hi_[0],
-            lo1 = box_lo_[1], hi1 = box_hi_[1], ny = static_cast<int64_t>(cells_[1]), head = cell_head_.data(),
-            entries = entries_.data(), reach = near_reach_](const V& x) -> uint8_t {
+  // one of them? in_box(x): is x in the box of the cells with entries (a few comparisons, which
+  // the caller's loop vectorises); operator(): the full test, for x in that box.
+  // (Everything by value: the caller's flag stores (uint8_t) could otherwise alias these members
+  // and force reloads in its loop.)
+  struct NearTest {
+    double ox, oy, inv_h, lo0, hi0, lo1, hi1, reach;
+    int64_t ny;
+    const int32_t* head;
+    const Entry* entries;
+    uint8_t in_box(const V& x) const {
       const double fx = (x.x() - ox) * inv_h, fy = (x.y() - oy) * inv_h;
-      if (!(fx >= lo0 && fx < hi0 && fy >= lo1 && fy < hi1)) return 0;
-      // (= cell_of's cell)
+      return (fx >= lo0) & (fx < hi0) & (fy >= lo1) & (fy < hi1);
+    }
+    uint8_t operator()(const V& x) const {
+      const double fx = (x.x() - ox) * inv_h, fy = (x.y() - oy) * inv_h;  // (= cell_of's cell)
       for (int32_t e = head[static_cast<int64_t>(fx) * ny + static_cast<int64_t>(fy)]; e >= 0; e = entries[e].next) {
         const Entry& en = entries[e];
         if (x.x() >= en.lo.x() - reach && x.x() <= en.hi.x() + reach && x.y() >= en.lo.y() - reach &&
@@ -119,7 +128,11 @@ class CrackFields {
           return 1;
       }
       return 0;
-    };
+    }
+  };
+  NearTest near_test() const {
+    return {G_.origin.x(), G_.origin.y(), inv_h_, box_lo_[0], box_hi_[0], box_lo_[1], box_hi_[1], near_reach_,
+            static_cast<int64_t>(cells_[1]), cell_head_.data(), entries_.data()};
   }
   void prepare_fields(bool flags_changed) {
     side_fields_.resize(cracks_.size());
@@ -421,10 +434,6 @@ class CrackFields {
   static constexpr double kProbe = 1e-3;  // cells: how far above/below a surface its probe sits
   static constexpr uint32_t kOverflow = crack::kFieldKeyOverflow;  // a line crossing three or more cracks
 
-  struct Entry {
-    int32_t crack, seg_lo, seg_hi, next;
-    V lo, hi;  // bounding box of the range's vertices seg_lo .. seg_hi + 1
-  };
 
   static V segment_normal(const crack::Crack2D& c, std::size_t s) {
     const V t = c.points[s + 1] - c.points[s];

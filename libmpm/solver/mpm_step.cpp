@@ -208,7 +208,7 @@ class MpmStepper final : public Stepper<Dim> {
   }
 
   // Subtask 3: the constitutive update, without a virtual call when every material is linear elastic.
-  void update_stress(std::size_t p, const Mat<Dim>& L, double dts) {
+  CLEAVE_INLINE void update_stress(std::size_t p, const Mat<Dim>& L, double dts) {
     const Material<Dim>* mat = m_.materials[P_.material[p]].get();
     if (all_linear_elastic_)  // devirtualised: inlined into the calling loop
       static_cast<const LinearElastic<Dim>*>(mat)->update_inline(P_.stress[p], P_.strain[p], L, dts);
