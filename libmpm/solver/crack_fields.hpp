@@ -76,6 +76,14 @@ class CrackFields {
       r += std::clamp(lmax, 0.0, 0.5);
     }
     near_reach_ = std::min(static_cast<double>(kReach), 2.0 * r + 1e-6) * G_.h;
+    for (const auto& c : cracks_) {
+      law_.push_back(c.contact_law == "none"       ? Law::None
+                     : c.contact_law == "stick"    ? Law::Stick
+                     : c.contact_law == "friction" ? Law::Friction
+                                                   : Law::Frictionless);
+      if (law_.back() == Law::None) continue;
+      (c.detection == crack::Crack2D::Detection::Volume ? need_volume_ : need_disp_) = true;
+    }
   }
 
   bool active() const { return !cracks_.empty(); }
@@ -181,24 +189,44 @@ class CrackFields {
 
   // Task 1 for near particle k: masses and momenta per field (eq. 26), total nodal volume (eq. 27)
   // and, for displacement contact, mass-weighted displacements per field (seed 000 eq. 68).
+  // Each detection method's sums only when a crack uses it (volumes: seed 002; displacements: seed 000).
+  void extrapolate(std::size_t k, const St& s) {
+    if (need_volume_) {
+      if (need_disp_) return extrapolate<true, true>(k, s);
+      return extrapolate<true, false>(k, s);
+    }
+    if (need_disp_) return extrapolate<false, true>(k, s);
+    extrapolate<false, false>(k, s);
+  }
+  template <bool volume, bool disp>
   void extrapolate(std::size_t k, const St& s) {
     const std::size_t p = static_cast<std::size_t>(near_[k]);
     const double mp = P_.mass[p];
-    const V mv = mp * P_.v[p], mu = mp * P_.u[p];
-    const auto& e = P_.strain[p];
-    const double area = area0_[p] * (1.0 + e[0]) * (1.0 + e[1]);  // eq. 25
+    const V mv = mp * P_.v[p];
+    V mu = V::Zero();
+    if constexpr (disp) mu = mp * P_.u[p];
+    double area = 0.0;
+    if constexpr (volume) {
+      const auto& e = P_.strain[p];
+      area = area0_[p] * (1.0 + e[0]) * (1.0 + e[1]);  // eq. 25
+    }
     for_each_pair_weight(k, s, [&](int64_t n, int32_t x, double w) {
-      const int32_t b = node_block_[n];
       if (x < 0) {
         grid_.mass[n] += mp * w;
         grid_.momentum[n] += mv * w;
-        if (b >= 0) disp0_[b] += mu * w;
+        if constexpr (disp) {
+          const int32_t b = node_block_[n];
+          if (b >= 0) disp0_[b] += mu * w;
+        }
       } else {
         mass_[x] += mp * w;
         momentum_[x] += mv * w;
-        disp_[x] += mu * w;
+        if constexpr (disp) disp_[x] += mu * w;
       }
-      if (b >= 0) volume_[b] += area * w;
+      if constexpr (volume) {
+        const int32_t b = node_block_[n];
+        if (b >= 0) volume_[b] += area * w;
+      }
     });
   }
 
@@ -306,7 +334,8 @@ class CrackFields {
           if (!(len > 0.0)) continue;
           nrm /= len;  // from above to below
           const crack::Crack2D& c = cracks_[crack];
-          if (c.contact_law == "none") continue;
+          const Law law = law_[crack];
+          if (law == Law::None) continue;
           V& pa = momentum(n, xa);
           V& pb = momentum(n, xb);
           const V dv = pa / ma - pb / mb;
@@ -333,12 +362,12 @@ class CrackFields {
           // Stick: both fields take the centre-of-mass velocity (eq. 13).
           const V stick = (ma * pb - mb * pa) / (ma + mb);
           V dp;
-          if (c.contact_law == "stick") {
+          if (law == Law::Stick) {
             dp = stick;
           } else {
             const double dpn = stick.dot(nrm);
             dp = dpn * nrm;
-            if (c.contact_law == "friction") {
+            if (law == Law::Friction) {
               // Coulomb: the tangential change needed to stick, capped at mu |normal change|
               // (eqs. 14-18 in momentum form).
               const V dpt = stick - dp;
@@ -405,7 +434,7 @@ class CrackFields {
     closing_.assign(block_node_.size() * nc, 0);
     for (std::size_t ci = 0; ci < nc; ++ci) {
       const crack::Crack2D& c = cracks_[ci];
-      if (c.contact_law == "none") continue;
+      if (law_[ci] == Law::None) continue;
       for (std::size_t i = 0; i < c.points.size(); ++i) {
         if (is_tip(c, i)) continue;  // its faces meet by definition (move_cracks): no gap to close
         const V nl = left_normal(c, i);
@@ -674,6 +703,12 @@ class CrackFields {
     block_key_.clear();
     std::vector<V>& normals = normals_next_;  // per slot, two (one per code of the key)
     normals.clear();
+    seg_normal_.resize(cracks_.size());
+    for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
+      const auto& c = cracks_[ci];
+      seg_normal_[ci].resize(c.points.size() - 1);
+      for (std::size_t sgi = 0; sgi + 1 < c.points.size(); ++sgi) seg_normal_[ci][sgi] = segment_normal(c, sgi);
+    }
     const std::size_t nn = near_.size();
     pair_slot_.assign(nn * N, 0);
     slot_any_.assign(nn, 0);
@@ -713,7 +748,7 @@ class CrackFields {
           const uint32_t code = (key >> (16 * c)) & 0xffffu;
           if (!code) continue;
           const int crack = static_cast<int>((code - 1) / 2);
-          normals[2 * (b * kExtra + slot) + c] += segment_normal(cracks_[crack], pair_seg_[2 * q + c]);
+          normals[2 * (b * kExtra + slot) + c] += seg_normal_[crack][pair_seg_[2 * q + c]];
         }
       });
     }
@@ -899,6 +934,10 @@ class CrackFields {
   std::vector<std::vector<SideFields>> side_fields_;  // per crack, two per point (side_velocity())
   std::vector<uint8_t> side_valid_;                   // per crack: side_fields_ are up to date
   long overflow_ = 0;
+  bool need_volume_ = false, need_disp_ = false;  // some crack detects contact by volume / displacement
+  enum class Law : uint8_t { None, Stick, Frictionless, Friction };
+  std::vector<Law> law_;                    // per crack: its contact law (Crack2D::contact_law)
+  std::vector<std::vector<V>> seg_normal_;  // per crack and segment: segment_normal, for allocate_fields
 };
 
 }  // namespace cleave
