@@ -15,6 +15,7 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -313,10 +314,14 @@ class CrackFields {
   // Contact (seed 002 §2.2; seed 000 Appendix B) at every multi-field node, between each pair of
   // fields whose keys differ in exactly one crack. With back_compute (Task 4) the momentum changes
   // are also added to the forces as Δp/dt so that Task 5 moves the particles consistently.
+  // Every multi-field node on its own (it changes only its own fields' momenta and forces): in
+  // parallel from kParallelPoints nodes.
   void contact(double dt, bool back_compute = false) {
     const double cell_volume = G_.h * G_.h;
     flag_closing_surfaces(dt);
-    for (std::size_t b = 0; b < block_node_.size(); ++b) {
+    const std::size_t nb = block_node_.size();
+#pragma omp parallel for schedule(static) if (parallel_points(nb))
+    for (std::size_t b = 0; b < nb; ++b) {
       const int64_t n = block_node_[b];
       const int nf = 1 + block_nslots_[b];
       for (int i = 0; i < nf; ++i)
@@ -398,6 +403,8 @@ class CrackFields {
       crack::Crack2D& c = cracks_[ci];
       const std::size_t np = c.points.size();
       std::vector<V> vm(np), va(np), vb(np);
+      if (!side_valid_[ci]) find_side_fields(ci);  // (side_velocity would, but not inside the parallel loop)
+#pragma omp parallel for schedule(static) if (parallel_points(np))
       for (std::size_t i = 0; i < np; ++i) {
         const V vcm = cm_velocity(c.points[i]);
         vm[i] = vcm;
@@ -435,16 +442,19 @@ class CrackFields {
     for (std::size_t ci = 0; ci < nc; ++ci) {
       const crack::Crack2D& c = cracks_[ci];
       if (law_[ci] == Law::None) continue;
-      for (std::size_t i = 0; i < c.points.size(); ++i) {
+      if (!side_valid_[ci]) find_side_fields(ci);  // (side_velocity would, but not inside the parallel loop)
+      const std::size_t np = c.points.size();
+#pragma omp parallel for schedule(static) if (parallel_points(np))
+      for (std::size_t i = 0; i < np; ++i) {
         if (is_tip(c, i)) continue;  // its faces meet by definition (move_cracks): no gap to close
         const V nl = left_normal(c, i);
         const V vcm = cm_velocity(c.points[i]);
         const V va = side_velocity(ci, i, 0, vcm);
         const V vb = side_velocity(ci, i, 1, vcm);
         if ((c.above[i] - c.below[i] + dt * (va - vb)).dot(nl) > 0.0) continue;
-        auto flag = [&](int64_t n, double) {
+        auto flag = [&](int64_t n, double) {  // (relaxed: only ever set to 1 here, by any point)
           const int32_t b = node_block_[n];
-          if (b >= 0) closing_[b * nc + ci] = 1;
+          if (b >= 0) std::atomic_ref<uint8_t>(closing_[b * nc + ci]).store(1, std::memory_order_relaxed);
         };
         linear_nodes(c.above[i], flag);
         linear_nodes(c.below[i], flag);
@@ -858,7 +868,9 @@ class CrackFields {
     const crack::Crack2D& c = cracks_[ci];
     auto& out = side_fields_[ci];
     out.assign(2 * c.points.size(), SideFields{});
-    for (std::size_t i = 0; i < c.points.size(); ++i) {
+    const std::size_t np = c.points.size();
+#pragma omp parallel for schedule(static) if (parallel_points(np))
+    for (std::size_t i = 0; i < np; ++i) {
       if (is_tip(c, i)) continue;  // a tip's surfaces follow the point itself
       const V nl = left_normal(c, i);
       // The probes sit just off the crack line itself, not off the surfaces: a surface that has
@@ -879,6 +891,11 @@ class CrackFields {
     }
     side_valid_[ci] = 1;
   }
+
+  // Loops over crack points or multi-field nodes (a few hundred, each ~0.1-0.3 us of work) pay for
+  // a fork/join from about this many.
+  static constexpr std::size_t kParallelPoints = 128;
+  static bool parallel_points(std::size_t n) { return n >= kParallelPoints && omp_get_max_threads() > 1; }
 
   // The four nodes of x's cell with bilinear weights (massless crack particles have no size).
   template <class F>
