@@ -48,12 +48,13 @@ TEST(Determinism, BeamImpactOneVsTwoThreads) {
 }
 
 TEST(Determinism, CrackedDcbOneVsTwoThreads) {
-  // The DCB with its explicit crack, refined so that more than kParallelNear (1024) particles are
-  // near the crack: the crack paths then run their gathers in parallel (scatters stay serial, in list
-  // order).
+  // The DCB with its explicit crack, refined so that the near particles run in the strip-ordered
+  // parallel passes (more than 8 192 particles in all) and the crack module's loops over crack points
+  // and multi-field nodes run in parallel (more than 128 of each: 209 crack points, segments of half
+  // a cell).
   nlohmann::json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");
   s["grid"]["cell_size"] = 0.5;
-  s["cracks"][0]["segment_length"] = 0.5;
+  s["cracks"][0]["segment_length"] = 0.25;
   s["bodies"][0]["particles_per_cell"] = 4;
   s["mpm"]["shape_function"] = "ugimp";
   for (const char* scheme : {"USAVG", "USF"}) {  // re-extrapolating; moving in Task 5
@@ -70,6 +71,7 @@ TEST(Determinism, CrackedDcbOneVsTwoThreads) {
     }
     expect_identical(snap[0], snap[1]);
     ASSERT_EQ(cracks[0].size(), 1u);
+    ASSERT_GT(cracks[0][0].points.size(), 128u);  // the parallel loops over crack points ran
     EXPECT_TRUE(cracks[0][0].points == cracks[1][0].points && cracks[0][0].above == cracks[1][0].above &&
                 cracks[0][0].below == cracks[1][0].below)
         << scheme << ": crack geometry differs between 1 and 2 threads";

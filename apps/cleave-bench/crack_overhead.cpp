@@ -7,9 +7,12 @@
 // CPU times (with one thread, insensitive to time slices lost to other processes on a shared
 // machine) and the ratio of the fastest block of each (the least disturbed by other processes).
 // Usage: cleave-bench-crack [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]
-// (defaults: 0.25 mm cells = 230 400 particles, 40 steps per block, 5 repetitions, after 5 warm-up
+// (defaults: 0.25 mm cells = 230 400 particles, blocks of 2 steps, 150 repetitions, after 5 warm-up
 // steps of each model; --only steps one of the two, for profiling; --null builds both models
 // without the crack, so the figure it prints is the benchmark's own bias and noise, not zero).
+// Short blocks keep the two halves of a repetition close in time, so that a change of the machine's
+// load hits both: on the shared 2-core VM, --null read -3.7 ... +3.5 % with blocks of 10 steps x 30
+// and -0.5 ... +0.3 % with 2 steps x 150 (docs/performance.md).
 #include <omp.h>
 
 #include <algorithm>
@@ -70,7 +73,7 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   double cell = 0.25;
-  int steps = 40, reps = 5;
+  int steps = 2, reps = 150;
   std::string only;
   bool null_test = false;  // both models uncracked: the benchmark's own bias and noise
   for (int i = 1; i < argc; ++i) {
