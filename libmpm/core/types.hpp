@@ -4,6 +4,12 @@
 #include <Eigen/Core>
 #include <cstdint>
 
+// Inlined wherever it is called: for the per-particle functions of the hot loops (a pass body, the
+// stencil and shape-function evaluation, the elastic update). GCC 12 stops inlining once a pass
+// function grows (a body used by two loops: a pass's variants with and without cracks), and a call
+// per particle then costs several per cent of a step (docs/performance.md, crack overhead).
+#define CLEAVE_INLINE __attribute__((always_inline))
+
 namespace cleave {
 
 template <int Dim> using Vec = Eigen::Matrix<double, Dim, 1>;

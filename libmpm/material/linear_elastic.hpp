@@ -31,7 +31,7 @@ class LinearElastic final : public Material<Dim> {
   void update(Sym<Dim>& s, Sym<Dim>& e, const Mat<Dim>& L, double dt) const override { update_inline(s, e, L, dt); }
 
   // The update on scalars (no temporaries in memory): called directly by the solver's stress pass.
-  __attribute__((always_inline)) inline void update_inline(Sym<Dim>& s, Sym<Dim>& e, const Mat<Dim>& L, double dt) const {
+  CLEAVE_INLINE inline void update_inline(Sym<Dim>& s, Sym<Dim>& e, const Mat<Dim>& L, double dt) const {
     const double exx = L(0, 0) * dt, eyy = L(1, 1) * dt, exy = 0.5 * (L(0, 1) + L(1, 0)) * dt;
     if constexpr (Dim == 2) {
       const double tr = exx + eyy;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libmpm/core/types.hpp"
+
 namespace cleave {
 
 // Linear (bilinear/trilinear) hat functions: 2 nodes per axis.
@@ -12,7 +14,7 @@ struct LinearShape {
   static constexpr int K = 2;
   static constexpr const char* name = "linear";
   // xi: particle coordinate in cells from the grid origin; l: particle half-width in cells (unused).
-  __attribute__((always_inline)) static inline int eval(double xi, double /*l*/, double* w, double* dw) {
+  CLEAVE_INLINE static inline int eval(double xi, double /*l*/, double* w, double* dw) {
     const double fl = static_cast<double>(static_cast<int>(xi));  // xi > 0 inside the grid
     const double f = xi - fl;
     w[0] = 1.0 - f;
@@ -36,7 +38,7 @@ struct UGimpShape {
     return 0.5 + c - 0.5 * c * std::fabs(c);
   }
   static inline double hat(double s) { return std::max(0.0, 1.0 - std::fabs(s)); }
-  __attribute__((always_inline)) static inline double weight(double d, double l, double& g) {
+  CLEAVE_INLINE static inline double weight(double d, double l, double& g) {
     if (l <= 0.0) {  // a surface (loaded face): the plain hat, point-evaluated
       g = std::fabs(d) < 1.0 ? (d > 0 ? -1.0 : 1.0) : 0.0;
       return hat(d);
@@ -48,7 +50,7 @@ struct UGimpShape {
   // The three weights of one axis. With r = xi - base in [1/2, 3/2) and l <= 1/2, node 0 only sees
   // the right half of its hat and node 2 only the left half, where H is a single parabola; node 1
   // follows from the partition of unity. This is ~4x fewer operations than three general weights.
-  __attribute__((always_inline)) static inline int eval(double xi, double l, double* w, double* dw) {
+  CLEAVE_INLINE static inline int eval(double xi, double l, double* w, double* dw) {
     const int base = static_cast<int>(xi + 0.5) - 1;  // xi > 0 inside the grid: truncation = floor
     if (l <= 0.0) {
       for (int a = 0; a < 3; ++a) w[a] = weight(xi - (base + a), l, dw[a]);

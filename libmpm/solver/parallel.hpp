@@ -18,11 +18,6 @@
 #include "libmpm/model/grid.hpp"
 #include "libmpm/model/particles.hpp"
 
-// On a particle loop's body (a lambda): inlined into every loop that calls it. GCC 12 stops
-// inlining a large body that two loops call (a pass's variants with and without cracks), and a
-// call per particle then costs several per cent of a step.
-#define CLEAVE_INLINE __attribute__((always_inline))
-
 namespace cleave {
 
 // Threads pay off only above a few thousand items per loop; below that the fork/join costs more

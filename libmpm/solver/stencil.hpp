@@ -25,9 +25,8 @@ struct Stencil {
   // l[d]: particle half-width in cells along axis d (0 along a loaded face's normal).
   // (Always inlined: called once per particle in every pass, and GCC leaves it out of line in the
   // larger pass bodies, ~7 % of a step spent in the call.)
-  __attribute__((always_inline)) inline void eval(const GridGeometry<Dim>& G,
-                                                  const std::array<std::size_t, Dim>& strides, double inv_h,
-                                                  const Vec<Dim>& x, const double* l) {
+  CLEAVE_INLINE inline void eval(const GridGeometry<Dim>& G, const std::array<std::size_t, Dim>& strides,
+                                 double inv_h, const Vec<Dim>& x, const double* l) {
     stride = strides;
     base = 0;
     for (int d = 0; d < Dim; ++d) {
@@ -36,9 +35,8 @@ struct Stencil {
       base += b * int64_t(stride[d]);
     }
   }
-  __attribute__((always_inline)) inline void eval(const GridGeometry<Dim>& G,
-                                                  const std::array<std::size_t, Dim>& strides, double inv_h,
-                                                  const Vec<Dim>& x, double l) {
+  CLEAVE_INLINE inline void eval(const GridGeometry<Dim>& G, const std::array<std::size_t, Dim>& strides,
+                                 double inv_h, const Vec<Dim>& x, double l) {
     double ls[Dim];
     for (int d = 0; d < Dim; ++d) ls[d] = l;
     eval(G, strides, inv_h, x, ls);

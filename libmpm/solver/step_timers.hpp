@@ -2,8 +2,6 @@
 // overhead study in docs/performance.md). Compiled in only with -DCLEAVE_STEP_TIMERS=ON; otherwise
 // CLEAVE_TIME expands to nothing and the stepper carries no timing code.
 #pragma once
-#include <cstdio>
-
 #ifdef CLEAVE_STEP_TIMERS
 #include <omp.h>
 #endif
