@@ -380,13 +380,13 @@ TEST(ParseCracks, PointsForm) {
   EXPECT_EQ(cs[1].id, 1);
   ASSERT_EQ(cs[0].points.size(), 3u);
   EXPECT_EQ(cs[0].points[2], v(2, 1));
-  EXPECT_EQ(cs[0].contact_law, "frictionless");
+  EXPECT_EQ(cs[0].contact_law, Crack2D::ContactLaw::Frictionless);
   EXPECT_EQ(cs[0].friction, 0.0);
   EXPECT_EQ(cs[0].lo, v(0, 0));
   EXPECT_EQ(cs[0].hi, v(2, 1));
-  EXPECT_EQ(cs[1].contact_law, "friction");
+  EXPECT_EQ(cs[1].contact_law, Crack2D::ContactLaw::Friction);
   EXPECT_EQ(cs[1].friction, 0.3);
-  EXPECT_EQ(cs[2].contact_law, "stick");
+  EXPECT_EQ(cs[2].contact_law, Crack2D::ContactLaw::Stick);
   EXPECT_TRUE(parse(json::array()).empty());
   // Straight-on and non-adjacent but far segments are fine.
   EXPECT_NO_THROW(parse(json::parse(R"([{"name": "s", "points": [[0, 0], [1, 0], [2, 0], [2, 1], [0, 1]]}])")));

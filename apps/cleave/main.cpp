@@ -121,7 +121,8 @@ void print_check(const Model<Dim>& m) {
   if constexpr (Dim == 2)
     for (const auto& c : m.cracks)
       std::printf("crack '%s': %zu segments, contact %s%s, %s detection\n", c.name.c_str(), c.points.size() - 1,
-                  c.contact_law.c_str(), c.contact_law == "friction" ? (" mu=" + std::to_string(c.friction)).c_str() : "",
+                  crack::contact_law_name(c.contact_law),
+                  c.contact_law == crack::Crack2D::ContactLaw::Friction ? (" mu=" + std::to_string(c.friction)).c_str() : "",
                   c.detection == crack::Crack2D::Detection::Volume ? "volume" : "displacement");
   std::printf("output: every %.6g s (%zu fields), global.csv every %.6g s\n", m.output.interval,
               m.output.fields.size(), m.output.global_interval);

@@ -11,6 +11,17 @@
 #include "libmpm/scene/json_reader.hpp"
 
 namespace cleave::crack {
+
+const char* contact_law_name(Crack2D::ContactLaw law) {
+  switch (law) {
+    case Crack2D::ContactLaw::Stick: return "stick";
+    case Crack2D::ContactLaw::Frictionless: return "frictionless";
+    case Crack2D::ContactLaw::Friction: return "friction";
+    case Crack2D::ContactLaw::None: return "none";
+  }
+  return "?";
+}
+
 namespace {
 
 constexpr std::size_t kMaxSegments = 1000000;
@@ -101,9 +112,12 @@ std::vector<Vec<2>> read_straight(const ObjectReader& r, double scale) {
 void read_contact(const ObjectReader& cr, Crack2D& c) {
   const ObjectReader r(cr["contact"], cr.at("contact"), {"law", "mu", "detection", "v_sep", "v_contact"});
   const std::string law = r.string("law");
-  if (law != "stick" && law != "frictionless" && law != "friction" && law != "none")
+  bool known = false;
+  for (auto l : {Crack2D::ContactLaw::Stick, Crack2D::ContactLaw::Frictionless, Crack2D::ContactLaw::Friction,
+                 Crack2D::ContactLaw::None})
+    if (law == contact_law_name(l)) c.contact_law = l, known = true;
+  if (!known)
     throw SceneError(r.at("law"), "unknown contact law \"" + law + "\"; valid laws: stick, frictionless, friction, none");
-  c.contact_law = law;
   if (law == "friction") {
     if (!r.has("mu")) throw SceneError(r.at("mu"), "missing (required for law \"friction\")");
     const double mu = r.number("mu");

@@ -21,9 +21,10 @@ struct Crack2D {
   int id = 0;                   // position in the scene's "cracks" array
   std::vector<Vec<2>> points;   // polyline vertices (massless crack particles), SI; direction
                                 // points[0] -> points[1] -> ... defines above (left) / below (right)
-  // "stick" | "frictionless" | "friction" (Coulomb, mu) | "none" (faces may interpenetrate: for
-  // cracks known to stay open, and for the crack patch test against a half model, which has none)
-  std::string contact_law = "frictionless";
+  // Contact law, scene names "stick" | "frictionless" | "friction" (Coulomb, mu) | "none" (faces may
+  // interpenetrate: for cracks known to stay open, and for the crack patch test against a half
+  // model, which has none).
+  enum class ContactLaw { Stick, Frictionless, Friction, None } contact_law = ContactLaw::Frictionless;
   double friction = 0.0;                     // Coulomb mu, only for "friction"
   // Contact detection: seed 002's nodal volume (V_rel > v_contact: contact; V_rel < v_sep: apart;
   // between: approaching faces are in contact) or seed 000's nodal displacement (approaching faces
@@ -132,6 +133,9 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
 
 // Exact closed-segment intersection test (shared end points count): used by the
 // self-intersection check and exposed for tests.
+// The scene name of a contact law ("stick", "frictionless", "friction", "none").
+const char* contact_law_name(Crack2D::ContactLaw law);
+
 bool segments_intersect(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c, const Vec<2>& d);
 
 }  // namespace cleave::crack

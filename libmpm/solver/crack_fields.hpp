@@ -78,11 +78,7 @@ class CrackFields {
     }
     near_reach_ = std::min(static_cast<double>(kReach), 2.0 * r + 1e-6) * G_.h;
     for (const auto& c : cracks_) {
-      law_.push_back(c.contact_law == "none"       ? Law::None
-                     : c.contact_law == "stick"    ? Law::Stick
-                     : c.contact_law == "friction" ? Law::Friction
-                                                   : Law::Frictionless);
-      if (law_.back() == Law::None) continue;
+      if (c.contact_law == Law::None) continue;
       (c.detection == crack::Crack2D::Detection::Volume ? need_volume_ : need_disp_) = true;
     }
   }
@@ -339,7 +335,7 @@ class CrackFields {
           if (!(len > 0.0)) continue;
           nrm /= len;  // from above to below
           const crack::Crack2D& c = cracks_[crack];
-          const Law law = law_[crack];
+          const Law law = c.contact_law;
           if (law == Law::None) continue;
           V& pa = momentum(n, xa);
           V& pb = momentum(n, xb);
@@ -403,7 +399,7 @@ class CrackFields {
       crack::Crack2D& c = cracks_[ci];
       const std::size_t np = c.points.size();
       std::vector<V> vm(np), va(np), vb(np);
-      if (!side_valid_[ci]) find_side_fields(ci);  // (side_velocity would, but not inside the parallel loop)
+      const std::vector<SideFields>& sides = side_fields(ci);
 #pragma omp parallel for schedule(static) if (parallel_points(np))
       for (std::size_t i = 0; i < np; ++i) {
         const V vcm = cm_velocity(c.points[i]);
@@ -412,8 +408,8 @@ class CrackFields {
           va[i] = vb[i] = vcm;
           continue;
         }
-        va[i] = side_velocity(ci, i, 0, vcm);
-        vb[i] = side_velocity(ci, i, 1, vcm);
+        va[i] = side_velocity(sides[2 * i], vcm);
+        vb[i] = side_velocity(sides[2 * i + 1], vcm);
       }
       for (std::size_t i = 0; i < np; ++i) {
         c.points[i] += dt * vm[i];
@@ -441,16 +437,16 @@ class CrackFields {
     closing_.assign(block_node_.size() * nc, 0);
     for (std::size_t ci = 0; ci < nc; ++ci) {
       const crack::Crack2D& c = cracks_[ci];
-      if (law_[ci] == Law::None) continue;
-      if (!side_valid_[ci]) find_side_fields(ci);  // (side_velocity would, but not inside the parallel loop)
+      if (c.contact_law == Law::None) continue;
+      const std::vector<SideFields>& sides = side_fields(ci);
       const std::size_t np = c.points.size();
 #pragma omp parallel for schedule(static) if (parallel_points(np))
       for (std::size_t i = 0; i < np; ++i) {
         if (is_tip(c, i)) continue;  // its faces meet by definition (move_cracks): no gap to close
         const V nl = left_normal(c, i);
         const V vcm = cm_velocity(c.points[i]);
-        const V va = side_velocity(ci, i, 0, vcm);
-        const V vb = side_velocity(ci, i, 1, vcm);
+        const V va = side_velocity(sides[2 * i], vcm);
+        const V vb = side_velocity(sides[2 * i + 1], vcm);
         if ((c.above[i] - c.below[i] + dt * (va - vb)).dot(nl) > 0.0) continue;
         auto flag = [&](int64_t n, double) {  // (relaxed: only ever set to 1 here, by any point)
           const int32_t b = node_block_[n];
@@ -472,7 +468,7 @@ class CrackFields {
  private:
   static constexpr double kProbe = 1e-3;  // cells: how far above/below a surface its probe sits
   static constexpr uint32_t kOverflow = crack::kFieldKeyOverflow;  // a line crossing three or more cracks
-
+  using Law = crack::Crack2D::ContactLaw;
 
   static V segment_normal(const crack::Crack2D& c, std::size_t s) {
     const V t = c.points[s + 1] - c.points[s];
@@ -837,11 +833,25 @@ class CrackFields {
     return wsum > 0.0 ? V(sum / wsum) : V::Zero();
   }
 
-  // The velocity a surface of crack point i of crack ci follows (side 0: above, 1: below): that of
-  // the field a virtual particle at the point's probe would use, interpolated at the surface.
-  V side_velocity(std::size_t ci, std::size_t i, int side, const V& fallback) {
+  // The nodes of a surface's cell, with bilinear weights, and the field at each that its probe
+  // selects (nodes without a field for that side left out). They depend on the crack geometry and
+  // the fields' keys, not on the momenta, so they are found once per step (up to three contact
+  // passes and the crack motion read them), and again only after a crack moved.
+  struct SideFields {
+    int count = 0;
+    int64_t node[4];
+    double w[4];
+    int32_t field[4];
+  };
+  // The side fields of crack ci, two per point (2 i: above, 2 i + 1: below), found afresh when a
+  // crack has moved since. Called before the loops over crack points, which run in parallel.
+  const std::vector<SideFields>& side_fields(std::size_t ci) {
     if (!side_valid_[ci]) find_side_fields(ci);
-    const SideFields& sf = side_fields_[ci][2 * i + side];
+    return side_fields_[ci];
+  }
+  // The velocity a surface follows: that of the field a virtual particle at its point's probe would
+  // use, interpolated at the surface (fallback where no such field has mass).
+  V side_velocity(const SideFields& sf, const V& fallback) const {
     V sum = V::Zero();
     double wsum = 0.0;
     for (int e = 0; e < sf.count; ++e) {
@@ -853,17 +863,6 @@ class CrackFields {
     }
     return wsum > 0.0 ? V(sum / wsum) : fallback;
   }
-
-  // The nodes of a surface's cell, with bilinear weights, and the field at each that its probe
-  // selects (nodes without a field for that side left out). They depend on the crack geometry and
-  // the fields' keys, not on the momenta, so they are found once per step (up to three contact
-  // passes and the crack motion read them), and again only after a crack moved.
-  struct SideFields {
-    int count = 0;
-    int64_t node[4];
-    double w[4];
-    int32_t field[4];
-  };
   void find_side_fields(std::size_t ci) {
     const crack::Crack2D& c = cracks_[ci];
     auto& out = side_fields_[ci];
@@ -948,12 +947,10 @@ class CrackFields {
   std::vector<V> momentum_, force_, disp_, normal_, disp0_, normals_next_;
   std::vector<NodeKinematics<2>> xkin_;
   std::vector<uint8_t> closing_;  // per block and crack: a crack point's faces close (contact())
-  std::vector<std::vector<SideFields>> side_fields_;  // per crack, two per point (side_velocity())
+  std::vector<std::vector<SideFields>> side_fields_;  // per crack, two per point (side_fields())
   std::vector<uint8_t> side_valid_;                   // per crack: side_fields_ are up to date
   long overflow_ = 0;
   bool need_volume_ = false, need_disp_ = false;  // some crack detects contact by volume / displacement
-  enum class Law : uint8_t { None, Stick, Frictionless, Friction };
-  std::vector<Law> law_;                    // per crack: its contact law (Crack2D::contact_law)
   std::vector<std::vector<V>> seg_normal_;  // per crack and segment: segment_normal, for allocate_fields
 };
 
