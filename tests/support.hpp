@@ -2,8 +2,9 @@
 #pragma once
 #include <nlohmann/json.hpp>
 
-#include "libmpm/scene/scene.hpp"
-#include "libmpm/solver/mpm_step.hpp"
+#include "libmpm/mpm/mpm_scene.hpp"
+#include "libmpm/mpm/mpm_method.hpp"
+#include "libmpm/mpm/mpm_step.hpp"
 
 namespace cleave::test {
 

@@ -12,8 +12,8 @@
 #include "libmpm/core/error.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/io/crack_output.hpp"
-#include "libmpm/solver/crack_tip_eval.hpp"
-#include "libmpm/solver/run.hpp"
+#include "libmpm/mpm/crack_tip_eval.hpp"
+#include "libmpm/mpm/mpm_method.hpp"
 #include "support.hpp"
 
 namespace cleave {

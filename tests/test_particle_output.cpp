@@ -14,7 +14,7 @@
 #include <map>
 
 #include "libmpm/io/particle_fields.hpp"
-#include "libmpm/solver/run.hpp"
+#include "libmpm/mpm/mpm_method.hpp"
 #include "support.hpp"
 
 namespace cleave {

@@ -13,12 +13,13 @@
 
 #include "libmpm/core/error.hpp"
 #include "libmpm/pd/bonds.hpp"
-#include "libmpm/pd/pd_run.hpp"
+#include "libmpm/pd/pd_method.hpp"
 #include "libmpm/pd/pd_scene.hpp"
 #include "libmpm/pd/pd_solver.hpp"
 #include "libmpm/pd/precrack.hpp"
 #include "libmpm/pd/tips.hpp"
-#include "libmpm/scene/scene.hpp"
+#include "libmpm/method/run_scene.hpp"
+#include "libmpm/mpm/mpm_scene.hpp"
 
 using namespace cleave;
 using namespace cleave::pd;
@@ -188,16 +189,16 @@ TEST(PdValidation, BranchingPlateCoarse) {
   std::ifstream tips(out / "crack_tips.csv");
   std::string line;
   std::getline(tips, line);
-  EXPECT_EQ(line, "time,branch,x,y,speed");
+  EXPECT_EQ(line, "time,crack,tip,x,y,speed");
   double vmax = 0, xmax = 0;
   int rows = 0;
   while (std::getline(tips, line)) {
     std::stringstream ss(line);
     std::vector<double> v;
     for (std::string f; std::getline(ss, f, ',');) v.push_back(std::stod(f));
-    ASSERT_EQ(v.size(), 5u);
-    vmax = std::max(vmax, v[4]);
-    xmax = std::max(xmax, v[2]);
+    ASSERT_EQ(v.size(), 6u);
+    vmax = std::max(vmax, v[5]);
+    xmax = std::max(xmax, v[3]);
     ++rows;
   }
   EXPECT_GT(rows, 20);
@@ -326,7 +327,7 @@ TEST(PdSolver, ThreeDimensionalCrackedBlockRuns) {
   std::ifstream tips(out / "crack_tips.csv");
   std::string header, row;
   std::getline(tips, header);
-  EXPECT_EQ(header, "time,branch,x,y,z,speed");
+  EXPECT_EQ(header, "time,crack,tip,x,y,z,speed");
   EXPECT_TRUE(static_cast<bool>(std::getline(tips, row))) << "no damaged point was ever tracked";
   EXPECT_TRUE(fs::exists(out / "particles.pvd"));
   std::size_t broken = 0;
@@ -389,7 +390,7 @@ TEST(PdScene, ErrorsNameTheKeyPath) {
   EXPECT_EQ(key_of(s), "grid");
   s = base;
   s["method"] = "sph";
-  EXPECT_THROW(is_peridynamics(s), SceneError);
+  EXPECT_THROW(SceneMethod::build(s), SceneError);
   json s3 = specimen(3, {0.01, 0.01, 0.01}, 0.001, 3, 1e-6);
   s3["cracks"] = json::array({{{"name", "q"}, {"quad", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}}}});
   try {

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "libmpm/core/error.hpp"
-#include "libmpm/scene/scene.hpp"
+#include "libmpm/mpm/mpm_scene.hpp"
 
 namespace {
 

@@ -2,7 +2,7 @@
 // bodies with linear shape functions (the beam impact is unstable at CFL 0.5 that way).
 #include <gtest/gtest.h>
 
-#include "libmpm/scene/scene.hpp"
+#include "libmpm/mpm/mpm_scene.hpp"
 
 namespace cleave {
 namespace {

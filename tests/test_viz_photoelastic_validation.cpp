@@ -9,8 +9,9 @@
 #include <functional>
 #include <numbers>
 
-#include "libmpm/scene/scene.hpp"
-#include "libmpm/solver/run.hpp"
+#include "libmpm/mpm/mpm_method.hpp"
+#include "libmpm/mpm/mpm_scene.hpp"
+#include "libmpm/method/run_loop.hpp"
 #include "viz/job/render_job.hpp"
 
 namespace cleave::viz {

@@ -24,9 +24,9 @@
 #include <string>
 #include <vector>
 
-#include "libmpm/scene/scene.hpp"
-#include "libmpm/solver/mpm_step.hpp"
-#include "libmpm/solver/step_timers.hpp"
+#include "libmpm/mpm/mpm_scene.hpp"
+#include "libmpm/mpm/mpm_step.hpp"
+#include "libmpm/mpm/step_timers.hpp"
 
 using namespace cleave;
 

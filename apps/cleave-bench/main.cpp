@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "libmpm/core/error.hpp"
-#include "libmpm/scene/scene.hpp"
-#include "libmpm/solver/mpm_step.hpp"
-#include "libmpm/solver/scheme.hpp"
+#include "libmpm/mpm/mpm_scene.hpp"
+#include "libmpm/mpm/mpm_step.hpp"
+#include "libmpm/mpm/scheme.hpp"
 
 using nlohmann::json;
 using namespace cleave;

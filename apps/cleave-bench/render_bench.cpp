@@ -10,8 +10,9 @@
 
 #include "libmpm/io/pvd_writer.hpp"
 #include "libmpm/io/vtu_writer.hpp"
-#include "libmpm/scene/scene.hpp"
-#include "libmpm/solver/run.hpp"
+#include "libmpm/mpm/mpm_method.hpp"
+#include "libmpm/mpm/mpm_scene.hpp"
+#include "libmpm/method/run_loop.hpp"
 #include "viz/job/render_job.hpp"
 
 namespace fs = std::filesystem;

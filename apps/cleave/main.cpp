@@ -8,13 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "apps/cleave/pd_cli.hpp"
 #include "apps/cleave/progress.hpp"
 #include "apps/cleave/render_cli.hpp"
 #include "libmpm/core/error.hpp"
-#include "libmpm/pd/pd_scene.hpp"
+#include "libmpm/method/run_scene.hpp"
 #include "libmpm/scene/scene.hpp"
-#include "libmpm/solver/run.hpp"
 
 namespace fs = std::filesystem;
 using namespace cleave;
@@ -72,76 +70,17 @@ struct Args {
   std::vector<std::string> sets;
 };
 
-// Applies one --set KEY=VALUE to the scene; the key path uses '.' and [i] like error messages.
-void apply_set(nlohmann::json& scene, const std::string& kv) {
-  const auto eq = kv.find('=');
-  if (eq == std::string::npos || eq == 0) throw SceneError(kv, "--set needs KEY=VALUE");
-  const std::string key = kv.substr(0, eq), text = kv.substr(eq + 1);
-  nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
-  if (value.is_discarded()) value = text;  // a bare word such as USL
-  nlohmann::json* node = &scene;
-  std::size_t i = 0;
-  while (i < key.size()) {
-    if (key[i] == '[') {
-      const auto close = key.find(']', i);
-      if (close == std::string::npos) throw SceneError(key, "unclosed '[' in --set key");
-      const std::size_t idx = std::stoul(key.substr(i + 1, close - i - 1));
-      if (!node->is_array() || idx >= node->size()) throw SceneError(key.substr(0, close + 1), "no such array element");
-      node = &(*node)[idx];
-      i = close + 1;
-    } else {
-      if (key[i] == '.') ++i;
-      const auto end = key.find_first_of(".[", i);
-      const std::string name = key.substr(i, end == std::string::npos ? std::string::npos : end - i);
-      if (!node->is_object()) throw SceneError(key, "cannot set a key inside a non-object");
-      node = &(*node)[name];
-      i = end == std::string::npos ? key.size() : end;
-    }
-  }
-  *node = value;
-}
-
 int usage_error(const std::string& msg) {
   std::fprintf(stderr, "cleave: %s\n(see cleave --help)\n", msg.c_str());
   return kBadInput;
 }
 
-template <int Dim>
-void print_check(const Model<Dim>& m) {
-  std::printf("scene OK: %s%dD %s, %zu particles in %zu bodies, %zu materials\n",
-              m.title.empty() ? "" : (m.title + ": ").c_str(), Dim,
-              m.analysis == Analysis::PlaneStress ? "plane stress"
-              : m.analysis == Analysis::PlaneStrain ? "plane strain" : "solid",
-              m.particles.size(), m.bodies.size(), m.materials.size());
-  std::printf("grid: cell %.6g m, %zu nodes", m.grid.h, m.grid.node_count());
-  for (int d = 0; d < Dim; ++d) std::printf("%s%d", d ? " x " : " (", m.grid.nodes[d]);
-  std::printf(")\nmethod: %s, %s; dt = %.6g s (stable limit %.6g s), %ld steps to %.6g s\n",
-              m.shape_function == ShapeFunctionKind::UGimp ? "uGIMP" : "linear", scheme_name(m.scheme), m.dt,
-              m.stable_dt, static_cast<long>(std::ceil(m.end_time / m.dt - 1e-9)), m.end_time);
-  if constexpr (Dim == 2)
-    for (const auto& c : m.cracks)
-      std::printf("crack '%s': %zu segments, contact %s%s, %s detection\n", c.name.c_str(), c.points.size() - 1,
-                  crack::contact_law_name(c.contact_law),
-                  c.contact_law == crack::Crack2D::ContactLaw::Friction ? (" mu=" + std::to_string(c.friction)).c_str() : "",
-                  c.detection == crack::Crack2D::Detection::Volume ? "volume" : "displacement");
-  std::printf("output: every %.6g s (%zu fields), global.csv every %.6g s\n", m.output.interval,
-              m.output.fields.size(), m.output.global_interval);
-  if (m.crack_tips) {
-    int tips = 0;
-    for (const auto& c : m.cracks) tips += c.tip[0] + c.tip[1];
-    const auto& t = *m.crack_tips;
-    std::printf("crack tips: %d, J by %s on a %s of %.6g cells (%d points), crack_tips.csv every %.6g s\n", tips,
-                t.volume_term ? "eq. 33 (contour + volume)" : "eq. 32 (contour)",
-                t.contour == crack::TipSettings::Contour::Circle ? "circle" : "square", t.radius, t.points, t.interval);
-  }
-}
-
-template <int Dim>
-int run_dim(const nlohmann::json& scene, const Args& a) {
-  Model<Dim> m = build_model<Dim>(scene);
-  for (const auto& w : m.warnings) std::fprintf(stderr, "cleave: warning: %s\n", w.c_str());
+int run_scene_command(const nlohmann::json& scene, const Args& a) {
+  SceneMethod method = SceneMethod::build(scene);
+  for (const auto& w : method.settings().warnings) std::fprintf(stderr, "cleave: warning: %s\n", w.c_str());
   if (a.command == "check") {
-    print_check(m);
+    const auto lines = method.describe();
+    for (std::size_t i = 0; i < lines.size(); ++i) std::printf("%s%s\n", i ? "" : "scene OK: ", lines[i].c_str());
     return kOk;
   }
   fs::path out = a.out;
@@ -150,7 +89,6 @@ int run_dim(const nlohmann::json& scene, const Args& a) {
   RunOptions opt;
   opt.out = out;
   opt.resume = a.resume;
-  opt.scene_hash = scene_hash(scene);
   opt.progress_interval_s = printer.interval();
   if (!a.quiet) opt.progress = [&](const RunProgress& p) { printer(p); };
   long warnings = 0;
@@ -158,14 +96,15 @@ int run_dim(const nlohmann::json& scene, const Args& a) {
     if (++warnings <= 5) std::fprintf(stderr, "\ncleave: warning: %s\n", w.c_str());
   };
   try {
-    const RunSummary s = run_model<Dim>(m, opt);
+    const RunSummary s = method.run(opt);
     printer.finish();
     if (warnings > 5) std::fprintf(stderr, "cleave: %ld warnings in all (5 shown)\n", warnings);
-    const double ns = 1e9 * s.wall_s / std::max(1.0, double(s.steps) * m.particles.size());
-    std::printf("done: %ld steps to t = %.6g s, %zu particles, %d frames, %s wall (%.0f ns/particle-step, %d threads); "
+    const auto [work, unit] = method.work_per_step();
+    const double ns = 1e9 * s.wall_s / std::max(1.0, double(s.steps) * work);
+    std::printf("done: %ld steps to t = %.6g s, %.0f %ss, %d frames, %s wall (%.*f ns/%s-step, %d threads); "
                 "output in %s\n",
-                s.steps, s.time, m.particles.size(), s.frames, app::format_seconds(s.wall_s).c_str(), ns,
-                omp_get_max_threads(), out.string().c_str());
+                s.steps, s.time, work, unit.c_str(), s.frames, app::format_seconds(s.wall_s).c_str(),
+                ns < 10 ? 2 : 0, ns, unit.c_str(), omp_get_max_threads(), out.string().c_str());
     return kOk;
   } catch (const RunAborted& e) {
     printer.finish();
@@ -229,10 +168,8 @@ int main(int argc, char** argv) {
 
   try {
     nlohmann::json scene = load_scene_file(a.scene);
-    for (const auto& kv : a.sets) apply_set(scene, kv);
-    if (pd::is_peridynamics(scene))  // "method": "peridynamics" (apps/cleave/pd_cli.cpp)
-      return app::run_peridynamics(scene, {a.command, a.scene, a.out, a.resume, a.quiet});
-    return scene_dimension(scene) == 3 ? run_dim<3>(scene, a) : run_dim<2>(scene, a);
+    for (const auto& kv : a.sets) apply_override(scene, kv);
+    return run_scene_command(scene, a);
   } catch (const SceneError& e) {
     std::fprintf(stderr, "cleave: %s: error at '%s': %s\n", a.scene.c_str(), e.key_path().c_str(), e.reason().c_str());
     return kBadInput;

@@ -1,6 +1,6 @@
 // Terminal progress for long runs: an updating line on a terminal, periodic plain lines in a log.
 #pragma once
-#include "libmpm/solver/run.hpp"
+#include "libmpm/method/run_loop.hpp"
 
 namespace cleave::app {
 

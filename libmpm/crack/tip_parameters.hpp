@@ -1,7 +1,7 @@
 // Crack-tip parameters in 2D (seed 000 §3 reduced to the plane): the crack-tip frame, the J-integral
 // contour (circle or square around the tip, midpoint rule, eq. 38), and the split of J into K_I and
 // K_II by the near-tip crack-opening ratio (eqs. 40-57, stationary crack). The field values on the
-// contour come from the solver (libmpm/solver/crack_tip_eval.hpp); this file holds the geometry
+// contour come from the solver (libmpm/mpm/crack_tip_eval.hpp); this file holds the geometry
 // and the closed-form parts, free of any solver state.
 #pragma once
 #include <vector>

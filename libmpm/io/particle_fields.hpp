@@ -5,7 +5,7 @@
 #include <string>
 
 #include "libmpm/io/point_set.hpp"
-#include "libmpm/model/model.hpp"
+#include "libmpm/mpm/model.hpp"
 
 namespace cleave::io {
 

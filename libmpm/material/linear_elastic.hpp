@@ -7,7 +7,7 @@
 
 #include "libmpm/core/error.hpp"
 #include "libmpm/material/material.hpp"
-#include "libmpm/scene/json_reader.hpp"
+#include "libmpm/core/json_reader.hpp"
 
 namespace cleave {
 

@@ -8,7 +8,7 @@
 
 #include "libmpm/core/registry.hpp"
 #include "libmpm/core/types.hpp"
-#include "libmpm/scene/units.hpp"
+#include "libmpm/core/units.hpp"
 
 namespace cleave {
 

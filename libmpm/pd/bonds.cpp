@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "libmpm/solver/parallel.hpp"
+#include "libmpm/core/parallel.hpp"
 
 namespace cleave::pd {
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "libmpm/core/run_settings.hpp"
 #include "libmpm/core/types.hpp"
 #include "libmpm/pd/bonds.hpp"
 #include "libmpm/pd/constants.hpp"
@@ -78,14 +79,8 @@ struct PdLoad {
   double factor(double t) const { return rise_time > 0.0 && t < rise_time ? t / rise_time : 1.0; }
 };
 
-struct PdOutput {
-  double interval = 0.0, global_interval = 0.0, tip_interval = 0.0;
-  std::set<std::string> fields;
-};
-
 template <int Dim>
-struct PdSystem {
-  std::string title;
+struct PdSystem : RunSettings {  // end time, dt, output, checks, damping (core/run_settings.hpp)
   Analysis analysis = Dim == 3 ? Analysis::ThreeD : Analysis::PlaneStress;
   double dx = 0.0, delta = 0.0, thickness = 1.0;
   int horizon_factor = 3;
@@ -95,15 +90,10 @@ struct PdSystem {
   PdNeighbours<Dim> nb;
   std::size_t bond_count = 0;          // bonds (each counted once) after pre-cracks
   std::size_t precrack_bonds = 0;      // bonds removed by the scene's pre-cracks
-  double damping = 0.0;                // kinetic damping (1/s): a -= damping * v
   std::vector<PdLoad<Dim>> loads;      // tractions as body force on the boundary layer
   Vec<Dim> gravity = Vec<Dim>::Zero();
-  double end_time = 0.0, dt = 0.0, stable_dt = 0.0;
   double tip_threshold = 0.3;
   std::vector<TipTracker<Dim>> trackers;
-  PdOutput output;
-  double energy_blowup_factor = 10.0;
-  std::vector<std::string> warnings;
 };
 
 }  // namespace cleave::pd

@@ -10,33 +10,20 @@
 #include "libmpm/crack/crack2d.hpp"
 #include "libmpm/geometry/shape.hpp"
 #include "libmpm/pd/precrack.hpp"
-#include "libmpm/scene/json_reader.hpp"
-#include "libmpm/scene/units.hpp"
+#include "libmpm/core/json_reader.hpp"
+#include "libmpm/core/units.hpp"
+#include "libmpm/scene/sections.hpp"
 
 namespace cleave::pd {
 namespace {
 
 using nlohmann::json;
+using scene::array_at;
+using scene::in_box;
+using scene::read_region;
 
 const char* const kPdFields[] = {"displacement", "velocity", "damage", "stress", "von_mises",
                                  "principal_stress_difference", "material", "volume", "size"};
-
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-
-const json& array_at(const json& root, const char* key, bool required) {
-  static const json empty = json::array();
-  if (!root.contains(key) || root[key].is_null()) {
-    if (required) throw SceneError(key, "missing");
-    return empty;
-  }
-  if (!root[key].is_array()) throw SceneError(key, "expected an array");
-  return root[key];
-}
 
 // Lattice index of a point: points sit at (k + 1/2) dx on every axis, one lattice for all bodies.
 template <int Dim>
@@ -46,33 +33,7 @@ int64_t lattice_key(const std::array<int64_t, Dim>& q) {
   return k;
 }
 
-template <int Dim>
-void read_region(const ObjectReader& r, const char* key, double L, Vec<Dim>& lo, Vec<Dim>& hi) {
-  ObjectReader rr(r[key], r.at(key), {"min", "max"});
-  lo = rr.vec<Dim>("min", L);
-  hi = rr.vec<Dim>("max", L);
-  for (int d = 0; d < Dim; ++d)
-    if (!(hi[d] >= lo[d])) throw SceneError(rr.at("max"), "region max is below region min");
-}
-
-template <int Dim>
-bool in_box(const Vec<Dim>& x, const Vec<Dim>& lo, const Vec<Dim>& hi, double tol) {
-  for (int d = 0; d < Dim; ++d)
-    if (x[d] < lo[d] - tol || x[d] > hi[d] + tol) return false;
-  return true;
-}
-
 }  // namespace
-
-bool is_peridynamics(const json& scene) {
-  if (!scene.is_object() || !scene.contains("method")) return false;
-  const json& m = scene["method"];
-  if (!m.is_string()) throw SceneError("method", "expected a string (mpm or peridynamics)");
-  const std::string s = m.get<std::string>();
-  if (s == "peridynamics") return true;
-  if (s == "mpm") return false;
-  throw SceneError("method", "unknown method '" + s + "'; valid: mpm, peridynamics");
-}
 
 template <int Dim>
 PdSystem<Dim> build_pd_system(const json& scene) {
@@ -83,21 +44,9 @@ PdSystem<Dim> build_pd_system(const json& scene) {
   const double L = units.factor(Quantity::Length);
   m.title = top.string_or("title", "");
 
-  // --- analysis -------------------------------------------------------------------------------
-  {
-    if (!top.has("analysis")) throw SceneError("analysis", "missing (plane_strain, plane_stress or 3d)");
-    ObjectReader r(scene["analysis"], "analysis", {"type", "thickness"});
-    const std::string type = r.string("type");
-    if (type == "plane_strain") m.analysis = Analysis::PlaneStrain;
-    else if (type == "plane_stress") m.analysis = Analysis::PlaneStress;
-    else if (type == "3d") m.analysis = Analysis::ThreeD;
-    else throw SceneError("analysis.type", "unknown analysis '" + type + "'; valid: plane_strain, plane_stress, 3d");
-    if (dimension_of(m.analysis) != Dim) throw SceneError("analysis.type", "dimension mismatch");
-    if (Dim == 3 && r.has("thickness")) throw SceneError("analysis.thickness", "a 3D analysis has no thickness");
-    if (m.analysis == Analysis::PlaneStress && !r.has("thickness"))
-      throw SceneError("analysis.thickness", "missing: a plane-stress analysis needs the specimen thickness");
-    m.thickness = Dim == 2 ? r.positive_or("thickness", 1.0, L) : 1.0;
-  }
+  m.analysis = scene::read_analysis(scene, L, m.thickness);
+  if (dimension_of(m.analysis) != Dim) throw SceneError("analysis.type", "dimension mismatch");
+  if (Dim == 3) m.thickness = 1.0;
   const PdModel model = m.analysis == Analysis::PlaneStress   ? PdModel::PlaneStress
                             : m.analysis == Analysis::PlaneStrain ? PdModel::PlaneStrain
                                                                   : PdModel::ThreeD;
@@ -263,12 +212,6 @@ PdSystem<Dim> build_pd_system(const json& scene) {
 
   // --- loads ----------------------------------------------------------------------------------
   const json& loads = array_at(scene, "loads", false);
-  auto axis_of = [](const std::string& s, const std::string& path) {
-    if (s == "x") return 0;
-    if (s == "y") return 1;
-    if (s == "z" && Dim == 3) return 2;
-    throw SceneError(path, "unknown axis '" + s + "'; valid: " + std::string(Dim == 3 ? "x, y, z" : "x, y"));
-  };
   for (std::size_t i = 0; i < loads.size(); ++i) {
     const std::string path = index_path("loads", i);
     if (!loads[i].is_object() || !loads[i].contains("type"))
@@ -284,7 +227,7 @@ PdSystem<Dim> build_pd_system(const json& scene) {
       if (face.size() != 2 || (face[0] != '+' && face[0] != '-'))
         throw SceneError(r.at("face"), "expected a face such as \"+y\" or \"-x\"");
       const int side = face[0] == '+' ? 1 : -1;
-      const int axis = axis_of(face.substr(1), r.at("face"));
+      const int axis = scene::axis_of<Dim>(face.substr(1), r.at("face"));
       bool region = r.has("region");
       Vec<Dim> lo, hi;
       if (region) read_region<Dim>(r, "region", L, lo, hi);
@@ -420,52 +363,12 @@ PdSystem<Dim> build_pd_system(const json& scene) {
     m.stable_dt = worst;
   }
 
-  // --- damping, time, output, checks ------------------------------------------------------------
-  if (top.has("damping")) {
-    ObjectReader r(scene["damping"], "damping", {"kinetic"});
-    m.damping = r.number_or("kinetic", 0.0, units.factor(Quantity::InverseTime));
-    if (m.damping < 0) throw SceneError("damping.kinetic", "must not be negative");
-  }
-  const double T = units.factor(Quantity::Time);
-  {
-    if (!top.has("time")) throw SceneError("time", "missing (needs at least time.end)");
-    ObjectReader r(scene["time"], "time", {"end", "dt", "cfl"});
-    m.end_time = r.positive("end", T);
-    if (r.has("dt") && r.has("cfl")) throw SceneError("time.cfl", "give time.dt or time.cfl, not both");
-    if (!std::isfinite(m.stable_dt)) {
-      if (!r.has("dt")) throw SceneError("time.dt", "missing: no point has a bond, so there is no stable step to scale");
-      m.dt = r.positive("dt", T);
-    } else if (r.has("dt")) {
-      m.dt = r.positive("dt", T);
-      if (m.dt > m.stable_dt)
-        throw SceneError("time.dt", "above the stable limit of seed 003 eq. 15: dt = " + fmt(m.dt) +
-                                        " s > sqrt(2 rho / sum_j V_j c_ij) = " + fmt(m.stable_dt) +
-                                        " s; use a smaller dt or time.cfl");
-    } else {
-      const double cfl = r.positive_or("cfl", 0.5);
-      if (cfl > 1.0) throw SceneError("time.cfl", "must be at most 1 (got " + std::to_string(cfl) + ")");
-      m.dt = cfl * m.stable_dt;
-    }
-  }
-  {
-    m.output.interval = m.end_time / 100;
-    m.output.fields = {std::begin(kPdFields), std::end(kPdFields)};
-    if (top.has("output")) {
-      ObjectReader r(scene["output"], "output", {"interval", "global_interval", "tip_interval", "fields"});
-      m.output.interval = r.positive_or("interval", m.end_time / 100, T);
-      if (r.has("fields")) m.output.fields = read_field_names(r["fields"], kPdFields, " for peridynamics");
-      m.output.global_interval = r.positive_or("global_interval", m.output.interval / 10, T);
-      m.output.tip_interval = r.positive_or("tip_interval", m.output.global_interval, T);
-    } else {
-      m.output.global_interval = m.output.interval / 10;
-      m.output.tip_interval = m.output.global_interval;
-    }
-  }
-  if (top.has("checks")) {
-    ObjectReader r(scene["checks"], "checks", {"energy_blowup_factor"});
-    m.energy_blowup_factor = r.positive_or("energy_blowup_factor", 10.0);
-    if (m.energy_blowup_factor <= 1.0) throw SceneError("checks.energy_blowup_factor", "must be greater than 1");
-  }
+  // --- damping, time, output, checks (shared sections) -------------------------------------------
+  m.damping = scene::read_damping(scene, units);
+  scene::read_time(scene, units, m.stable_dt, "sqrt(2 rho / sum_j V_j c_ij) (seed 003 eq. 15)",
+                   "no point has a bond, so there is no stable step to scale", m);
+  scene::read_output(scene, units, kPdFields, " for peridynamics", true, m);
+  scene::read_checks(scene, m);
   return m;
 }
 

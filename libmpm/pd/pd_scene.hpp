@@ -8,10 +8,6 @@
 
 namespace cleave::pd {
 
-// True when the scene asks for peridynamics ("method": "peridynamics"); SceneError("method") for a
-// value other than "mpm" or "peridynamics".
-bool is_peridynamics(const nlohmann::json& scene);
-
 template <int Dim>
 PdSystem<Dim> build_pd_system(const nlohmann::json& scene);
 

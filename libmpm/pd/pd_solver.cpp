@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "libmpm/solver/parallel.hpp"
+#include "libmpm/core/parallel.hpp"
 
 namespace cleave::pd {
 

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "libmpm/core/error.hpp"
-#include "libmpm/scene/json_reader.hpp"
+#include "libmpm/core/json_reader.hpp"
 
 namespace cleave::pd {
 namespace {

@@ -1,10 +1,10 @@
-// Scene → model: reads a scene JSON file (documented key by key in docs/scenes.md), validates every
-// value with errors that name the key path, converts declared units to SI once, and builds the model.
+// A scene file as JSON: reading it, the facts every method needs before it builds (dimension,
+// method), and `--set` overrides. The sections shared by every method are in scene/sections.hpp;
+// each method reads its own section in its folder (mpm/mpm_scene.cpp, pd/pd_scene.cpp).
 #pragma once
 #include <filesystem>
 #include <nlohmann/json.hpp>
-
-#include "libmpm/model/model.hpp"
+#include <string>
 
 namespace cleave {
 
@@ -14,8 +14,12 @@ nlohmann::json load_scene_file(const std::filesystem::path& file);
 // 2 or 3, from "analysis.type".
 int scene_dimension(const nlohmann::json& scene);
 
-// Validates the scene and builds the model (bodies filled with particles, loads resolved).
-template <int Dim>
-Model<Dim> build_model(const nlohmann::json& scene);
+// The scene's "method" ("mpm" when absent). Whether it names a registered method is the method
+// registry's check (method/method.hpp).
+std::string scene_method(const nlohmann::json& scene);
+
+// Applies one KEY=VALUE override; the key path uses '.' and [i] like error messages
+// (mpm.stress_update, bodies[1].velocity); VALUE is JSON or else a plain string.
+void apply_override(nlohmann::json& scene, const std::string& key_value);
 
 }  // namespace cleave

@@ -1,6 +1,8 @@
-// The run: steps the model to its end time, writes the particle series (particles.pvd + VTU frames),
-// global.csv, a checkpoint at every frame, and run.json whose "status" says whether the output is
-// complete, still running, or stopped by a detected problem.
+// The one run loop, for every method: steps a Method to its end time and writes the frame series
+// (particles.pvd + VTU frames, and any other series the method has, such as cracks.pvd),
+// global.csv, crack_tips.csv when the method has a tip table, checkpoint.bin at every frame, and
+// run.json whose "status" says whether the output is complete, still running, or stopped by a
+// detected problem. `--resume` continues from the last checkpoint bit for bit.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -10,8 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "libmpm/model/model.hpp"
-#include "libmpm/solver/mpm_step.hpp"
+#include "libmpm/method/method.hpp"
 
 namespace cleave {
 
@@ -36,7 +37,7 @@ struct RunSummary {
   double max_energy_drift = 0.0;  // max |E - E0| / max(E0, max E) over global rows (no loads/damping)
 
   // Takes the total energy of one global row: E0 is the first, the drift is folded into
-  // max_energy_drift. Shared by the MPM and PD runs.
+  // max_energy_drift.
   void observe_energy(double total) {
     if (first_energy < 0) first_energy = total;
     largest_energy = std::max(largest_energy, total);
@@ -48,7 +49,7 @@ struct RunSummary {
 
 // Throws RunAborted (after writing the last state) when a step detects a problem.
 template <int Dim>
-RunSummary run_model(Model<Dim>& m, const RunOptions& opt);
+RunSummary run_method(Method<Dim>& method, const RunOptions& opt);
 
 uint64_t scene_hash(const nlohmann::json& scene);
 

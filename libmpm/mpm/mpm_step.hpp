@@ -7,7 +7,8 @@
 #include <vector>
 
 #include "libmpm/crack/tip_parameters.hpp"
-#include "libmpm/model/model.hpp"
+#include "libmpm/method/method.hpp"  // StepProblem
+#include "libmpm/mpm/model.hpp"
 
 namespace cleave {
 
@@ -19,13 +20,6 @@ struct GlobalState {
   double kinetic = 0.0, strain = 0.0, external_work = 0.0;
   Vec<Dim> momentum = Vec<Dim>::Zero();
   double total() const { return kinetic + strain; }
-};
-
-// A problem found during a step (NaN, particle outside the grid); empty when all is well.
-struct StepProblem {
-  long particle = -1;
-  std::string what;
-  explicit operator bool() const { return particle >= 0; }
 };
 
 template <int Dim>

@@ -15,8 +15,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "libmpm/model/grid.hpp"
-#include "libmpm/model/particles.hpp"
+#include "libmpm/mpm/grid.hpp"
+#include "libmpm/mpm/particles.hpp"
 
 namespace cleave {
 

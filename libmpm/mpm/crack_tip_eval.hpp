@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "libmpm/crack/tip_parameters.hpp"
-#include "libmpm/model/model.hpp"
-#include "libmpm/solver/stencil.hpp"
+#include "libmpm/mpm/model.hpp"
+#include "libmpm/mpm/stencil.hpp"
 
 namespace cleave {
 

@@ -1,4 +1,4 @@
-#include "libmpm/solver/mpm_step.hpp"
+#include "libmpm/mpm/mpm_step.hpp"
 
 #include <omp.h>
 
@@ -8,11 +8,11 @@
 #include <limits>
 
 #include "libmpm/material/linear_elastic.hpp"
-#include "libmpm/solver/crack_fields.hpp"
-#include "libmpm/solver/crack_tip_eval.hpp"
-#include "libmpm/solver/parallel.hpp"
-#include "libmpm/solver/stencil.hpp"
-#include "libmpm/solver/step_timers.hpp"
+#include "libmpm/mpm/crack_fields.hpp"
+#include "libmpm/mpm/crack_tip_eval.hpp"
+#include "libmpm/core/parallel.hpp"
+#include "libmpm/mpm/stencil.hpp"
+#include "libmpm/mpm/step_timers.hpp"
 
 namespace cleave {
 namespace {

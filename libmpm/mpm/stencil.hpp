@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "libmpm/core/types.hpp"
-#include "libmpm/model/grid.hpp"
+#include "libmpm/mpm/grid.hpp"
 #include "libmpm/shape/shape_function.hpp"
 
 namespace cleave {

@@ -1,4 +1,4 @@
-#include "libmpm/scene/units.hpp"
+#include "libmpm/core/units.hpp"
 
 #include <map>
 #include <utility>

@@ -7,14 +7,15 @@
 #include <string>
 #include <vector>
 
+#include "libmpm/core/run_settings.hpp"
 #include "libmpm/crack/crack2d.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/material/material.hpp"
-#include "libmpm/model/grid.hpp"
-#include "libmpm/model/loads.hpp"
-#include "libmpm/model/particles.hpp"
+#include "libmpm/mpm/grid.hpp"
+#include "libmpm/mpm/loads.hpp"
+#include "libmpm/mpm/particles.hpp"
 #include "libmpm/shape/shape_function.hpp"
-#include "libmpm/solver/scheme.hpp"
+#include "libmpm/mpm/scheme.hpp"
 
 namespace cleave {
 
@@ -33,15 +34,10 @@ struct GridConditions {
   std::vector<Vec<Dim>> velocity;
 };
 
-struct OutputSettings {
-  double interval = 0.0;         // particle VTU frames
-  double global_interval = 0.0;  // global.csv rows
-  std::set<std::string> fields;
-};
-
 template <int Dim>
-struct Model {
-  std::string title;
+// The run settings (end time, dt, output, checks, damping, title, warnings) come from the shared
+// scene sections (core/run_settings.hpp).
+struct Model : RunSettings {
   Analysis analysis = Dim == 3 ? Analysis::ThreeD : Analysis::PlaneStrain;
   GridGeometry<Dim> grid;
   ShapeFunctionKind shape_function = ShapeFunctionKind::UGimp;
@@ -54,13 +50,6 @@ struct Model {
   std::vector<TractionLoad<Dim>> tractions;
   Vec<Dim> gravity = Vec<Dim>::Zero();
   GridConditions<Dim> conditions;
-  double damping = 0.0;  // kinetic damping coefficient kappa (1/s), seed 002 eq. 28
-  double end_time = 0.0;
-  double dt = 0.0;
-  double stable_dt = 0.0;  // h / c_max at the start
-  double energy_blowup_factor = 10.0;
-  OutputSettings output;
-  std::vector<std::string> warnings;  // doubts about the scene that are not errors (printed by the CLI)
 };
 
 }  // namespace cleave

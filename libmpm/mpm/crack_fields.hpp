@@ -22,10 +22,10 @@
 #include <vector>
 
 #include "libmpm/crack/crack2d.hpp"
-#include "libmpm/model/model.hpp"
-#include "libmpm/solver/parallel.hpp"
-#include "libmpm/solver/stencil.hpp"
-#include "libmpm/solver/step_timers.hpp"
+#include "libmpm/mpm/model.hpp"
+#include "libmpm/core/parallel.hpp"
+#include "libmpm/mpm/stencil.hpp"
+#include "libmpm/mpm/step_timers.hpp"
 
 namespace cleave {
 

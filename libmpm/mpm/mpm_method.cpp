@@ -1,0 +1,176 @@
+// The Material Point Method behind the method seam (method/method.hpp): the model built from the
+// scene (mpm_scene.cpp), the stepper (mpm_step.cpp), and what a run writes: particle frames, crack
+// frames, global.csv columns, crack_tips.csv rows and the restart state.
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "libmpm/io/crack_output.hpp"
+#include "libmpm/io/particle_fields.hpp"
+#include "libmpm/mpm/mpm_method.hpp"
+#include "libmpm/mpm/mpm_scene.hpp"
+#include "libmpm/mpm/mpm_step.hpp"
+
+namespace cleave {
+namespace {
+
+std::string format(const char* f, auto... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, f, args...);
+  return buf;
+}
+
+template <int Dim>
+std::string position(const Vec<Dim>& x) {
+  std::ostringstream s;
+  s << "(";
+  for (int d = 0; d < Dim; ++d) s << (d ? ", " : "") << x[d];
+  s << ") m";
+  return s.str();
+}
+
+template <int Dim>
+class MpmMethod final : public Method<Dim> {
+ public:
+  explicit MpmMethod(const nlohmann::json& scene)
+      : owned_(std::make_unique<Model<Dim>>(build_model<Dim>(scene))), m_(*owned_), stepper_(make_stepper<Dim>(m_)) {}
+  // A method over a model the caller built and keeps (tests and benchmarks inspect it afterwards).
+  explicit MpmMethod(Model<Dim>& m) : m_(m), stepper_(make_stepper<Dim>(m_)) {}
+
+  const char* name() const override { return "mpm"; }
+  const RunSettings& settings() const override { return m_; }
+  std::pair<double, std::string> work_per_step() const override { return {double(m_.particles.size()), "particle"}; }
+
+  std::vector<std::string> describe() const override {
+    const Model<Dim>& m = m_;
+    std::vector<std::string> out;
+    out.push_back(format("%s%dD %s, %zu particles in %zu bodies, %zu materials",
+                         m.title.empty() ? "" : (m.title + ": ").c_str(), Dim,
+                         m.analysis == Analysis::PlaneStress ? "plane stress"
+                         : m.analysis == Analysis::PlaneStrain ? "plane strain" : "solid",
+                         m.particles.size(), m.bodies.size(), m.materials.size()));
+    std::string grid = format("grid: cell %.6g m, %zu nodes", m.grid.h, m.grid.node_count());
+    for (int d = 0; d < Dim; ++d) grid += format("%s%d", d ? " x " : " (", m.grid.nodes[d]);
+    out.push_back(grid + ")");
+    out.push_back(format("method: MPM, %s, %s; dt = %.6g s (stable limit %.6g s), %ld steps to %.6g s",
+                         m.shape_function == ShapeFunctionKind::UGimp ? "uGIMP" : "linear", scheme_name(m.scheme), m.dt,
+                         m.stable_dt, static_cast<long>(std::ceil(m.end_time / m.dt - 1e-9)), m.end_time));
+    for (const auto& c : m.cracks)
+      out.push_back(format("crack '%s': %zu segments, contact %s%s, %s detection", c.name.c_str(), c.points.size() - 1,
+                           crack::contact_law_name(c.contact_law),
+                           c.contact_law == crack::Crack2D::ContactLaw::Friction
+                               ? (" mu=" + std::to_string(c.friction)).c_str() : "",
+                           c.detection == crack::Crack2D::Detection::Volume ? "volume" : "displacement"));
+    out.push_back(format("output: every %.6g s (%zu fields), global.csv every %.6g s", m.output.interval,
+                         m.output.fields.size(), m.output.global_interval));
+    if (m.crack_tips) {
+      int tips = 0;
+      for (const auto& c : m.cracks) tips += c.tip[0] + c.tip[1];
+      const auto& t = *m.crack_tips;
+      out.push_back(format("crack tips: %d, J by %s on a %s of %.6g cells (%d points), crack_tips.csv every %.6g s",
+                           tips, t.volume_term ? "eq. 33 (contour + volume)" : "eq. 32 (contour)",
+                           t.contour == crack::TipSettings::Contour::Circle ? "circle" : "square", t.radius, t.points,
+                           t.interval));
+    }
+    return out;
+  }
+
+  StepProblem step() override {
+    StepProblem p = stepper_->step();
+    if (p) p.what = "particle " + std::to_string(p.particle) + " at " + position<Dim>(m_.particles.x[p.particle]) +
+                    " " + p.what;
+    return p;
+  }
+  double time() const override { return stepper_->time(); }
+  long step_count() const override { return stepper_->step_count(); }
+  std::string take_warning() override { return stepper_->take_warning(); }
+  std::string fastest_point() const override {
+    const auto& P = m_.particles;
+    std::size_t fast = 0;
+    for (std::size_t p = 1; p < P.size(); ++p)
+      if (P.v[p].squaredNorm() > P.v[fast].squaredNorm()) fast = p;
+    std::ostringstream s;
+    s << "particle " << fast << " at " << position<Dim>(P.x[fast]) << ", speed " << P.v[fast].norm() << " m/s";
+    return s.str();
+  }
+
+  std::vector<std::string> global_columns() const override {
+    std::vector<std::string> c = {"time", "step", "kinetic_energy", "strain_energy", "external_work", "total_energy",
+                                  "momentum_x", "momentum_y"};
+    if (Dim == 3) c.push_back("momentum_z");
+    return c;
+  }
+  GlobalRow global_row() const override {
+    const auto g = stepper_->global_state();
+    GlobalRow r;
+    r.values = {g.time, double(g.step), g.kinetic, g.strain, g.external_work, g.total()};
+    for (int d = 0; d < Dim; ++d) r.values.push_back(g.momentum[d]);
+    r.total_energy = g.total();
+    r.external_work = g.external_work;
+    return r;
+  }
+
+  std::vector<std::string> frame_series() const override {
+    if (m_.cracks.empty()) return {"particles"};
+    return {"particles", "cracks"};
+  }
+  io::PointSet frame(std::size_t series) override {
+    if (series == 0) return io::particle_point_set<Dim>(m_, m_.output.fields);
+    if (m_.crack_tips) return io::crack_point_set(m_.cracks, stepper_->crack_tip_parameters(*m_.crack_tips));
+    return io::crack_point_set(m_.cracks);
+  }
+
+  std::vector<std::string> tip_columns() const override {
+    if (!m_.crack_tips) return {};
+    return {"time", "crack", "tip", "x", "y", "J1", "J2", "KI", "KII"};
+  }
+  std::vector<std::vector<double>> tip_rows() override {
+    std::vector<std::vector<double>> rows;
+    if (!m_.crack_tips) return rows;
+    const double t = stepper_->time();
+    for (const auto& r : stepper_->crack_tip_parameters(*m_.crack_tips))
+      rows.push_back({t, double(r.crack), double(r.end), r.x.x(), r.x.y(), r.J1, r.J2, r.KI, r.KII});
+    return rows;
+  }
+
+  void save(StateWriter& w) const override {
+    w.value(stepper_->time());
+    w.value(stepper_->step_count());
+    w.value(stepper_->external_work());
+    const auto& P = m_.particles;
+    w.array(P.x), w.array(P.v), w.array(P.u), w.array(P.stress), w.array(P.strain), w.array(P.rotation);
+    for (const auto& c : m_.cracks) w.array(c.points), w.array(c.above), w.array(c.below);
+  }
+  void load(StateReader& r) override {
+    double t = 0, work = 0;
+    long step = 0;
+    r.value(t), r.value(step), r.value(work);
+    auto& P = m_.particles;
+    r.array(P.x, "particles"), r.array(P.v, "particles"), r.array(P.u, "particles");
+    r.array(P.stress, "particles"), r.array(P.strain, "particles"), r.array(P.rotation, "particle rotations");
+    for (auto& c : m_.cracks) {
+      r.array(c.points, "crack points"), r.array(c.above, "crack points"), r.array(c.below, "crack points");
+      c.update_extent();
+    }
+    stepper_->restore(t, step, work);
+  }
+
+
+ private:
+  std::unique_ptr<Model<Dim>> owned_;  // null when the caller owns the model
+  Model<Dim>& m_;
+  std::unique_ptr<Stepper<Dim>> stepper_;
+};
+
+}  // namespace
+
+template <int Dim>
+std::unique_ptr<Method<Dim>> make_mpm_method(Model<Dim>& m) {
+  return std::make_unique<MpmMethod<Dim>>(m);
+}
+template std::unique_ptr<Method<2>> make_mpm_method<2>(Model<2>&);
+template std::unique_ptr<Method<3>> make_mpm_method<3>(Model<3>&);
+
+}  // namespace cleave
+
+CLEAVE_REGISTER_METHOD("mpm", cleave::MpmMethod)

@@ -1,0 +1,527 @@
+#include "libmpm/mpm/mpm_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <unordered_set>
+
+#include "libmpm/geometry/shape.hpp"
+#include "libmpm/core/json_reader.hpp"
+#include "libmpm/core/units.hpp"
+#include "libmpm/scene/sections.hpp"
+
+namespace cleave {
+namespace {
+
+using nlohmann::json;
+using scene::array_at;
+
+const char* const kFieldNames[] = {"displacement", "velocity", "stress", "strain", "material",
+                                   "mass", "volume", "size", "rotation", "von_mises", "principal_stress_difference"};
+
+// Lattice coordinates of a particle, used to find boundary faces for tractions.
+template <int Dim>
+struct LatticeKey {
+  std::array<int64_t, Dim> c;
+  int64_t hash() const {
+    int64_t k = 0;
+    for (int d = 0; d < Dim; ++d) k = k * 2000003 + c[d];
+    return k;
+  }
+};
+
+template <int Dim>
+struct BodyLattice {
+  int n = 2;                          // particles per cell per axis
+  std::unordered_set<int64_t> occupied;
+  std::vector<std::array<int64_t, Dim>> coord;  // per particle of the body
+};
+
+}  // namespace
+
+// Checks that need the model: every crack point inside the grid (with room for its nodes), and
+// every crack touching a body (some particle within one cell of a segment).
+static void check_cracks(const Model<2>& m) {
+  const double h = m.grid.h;
+  const Vec<2> lo = m.grid.origin, hi = m.grid.upper();
+  for (const auto& c : m.cracks) {
+    const std::string path = "cracks[" + std::to_string(c.id) + "]";
+    for (std::size_t i = 0; i < c.points.size(); ++i) {
+      const Vec<2>& x = c.points[i];
+      if (!((x.array() > lo.array() + h).all() && (x.array() < hi.array() - h).all()))
+        throw SceneError(path, "crack '" + c.name + "': point " + std::to_string(i) + " (" + std::to_string(x.x()) +
+                                   ", " + std::to_string(x.y()) +
+                                   ") m lies outside the grid or within one cell of its edge; enlarge the grid");
+    }
+    bool touches = false;
+    const Vec<2> clo = c.lo.array() - h, chi = c.hi.array() + h;
+    for (std::size_t p = 0; p < m.particles.size() && !touches; ++p) {
+      const Vec<2>& x = m.particles.x[p];
+      if ((x.array() < clo.array()).any() || (x.array() > chi.array()).any()) continue;
+      for (std::size_t s = 0; s + 1 < c.points.size() && !touches; ++s) {
+        const Vec<2> a = c.points[s], d = c.points[s + 1] - a;
+        const double t = std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+        touches = (x - (a + t * d)).norm() <= h;
+      }
+    }
+    if (!touches)
+      throw SceneError(path, "crack '" + c.name + "' lies outside every body (no particle within one cell of it)");
+  }
+}
+
+// "tips": "auto" makes an end point a crack tip when there is material ahead of it (a particle
+// within one cell of the point one cell ahead along the crack): the end of a crack cut in from a
+// free edge is no tip.
+static void resolve_tips(Model<2>& m) {
+  const double h = m.grid.h;
+  for (auto& c : m.cracks) {
+    if (c.tips != "auto") continue;
+    for (int end = 0; end < 2; ++end) {
+      const crack::TipFrame f = crack::tip_frame(c, end);
+      const Vec<2> ahead = f.tip + h * f.e1;
+      c.tip[end] = false;
+      for (std::size_t p = 0; p < m.particles.size() && !c.tip[end]; ++p)
+        c.tip[end] = (m.particles.x[p] - ahead).norm() <= h;
+    }
+  }
+}
+
+// The scene key "crack_tips": J-integral contour and output interval (default: global_interval).
+// The J-integral's path independence holds for a contour around one crack tip only: warn when a
+// contour encloses part of another crack (or of the same crack away from the tip's own segments),
+// sampling every segment at quarter cells.
+static void warn_contour_meets_cracks(const Model<2>& m, const crack::TipSettings& s, const crack::Crack2D& c, int end,
+                                      std::vector<std::string>& warnings) {
+  const double h = m.grid.h;
+  const crack::TipFrame f = crack::tip_frame(c, end);
+  const double reach = s.radius * h * std::sqrt(2.0);  // the contour's farthest point from the tip
+  // Arc length of the tip's own crack from its start to each vertex.
+  std::vector<double> arc(c.points.size(), 0.0);
+  for (std::size_t j = 1; j < c.points.size(); ++j) arc[j] = arc[j - 1] + (c.points[j] - c.points[j - 1]).norm();
+  for (const auto& o : m.cracks)
+    for (std::size_t i = 0; i + 1 < o.points.size(); ++i) {
+      const Vec<2> a = o.points[i], b = o.points[i + 1];
+      const int n = std::max(1, static_cast<int>(std::ceil(4 * (b - a).norm() / h)));
+      bool inside = false;
+      for (int k = 0; k <= n && !inside; ++k) {
+        const Vec<2> x = a + (b - a) * (static_cast<double>(k) / n);
+        // The tip's own crack runs into the contour along its last stretch: skip the points on it
+        // within the contour's reach of the tip, measured along the crack.
+        if (&o == &c) {
+          const double from_start = arc[i] + (x - a).norm();  // distance from the tip along the crack
+          const double along = end == 1 ? arc.back() - from_start : from_start;
+          if (along <= reach + 1e-9 * h) continue;
+        }
+        inside = crack::inside_contour(f, s, h, x);
+      }
+      if (inside) {
+        warnings.push_back("crack_tips: the contour around the " + std::string(end ? "end" : "start") + " tip of crack '" +
+                           c.name + "' encloses part of crack '" + o.name +
+                           "'; J there is not path-independent (use a smaller crack_tips.radius or move the cracks apart)");
+        return;
+      }
+    }
+}
+
+static crack::TipSettings read_crack_tips(const json& scene, const Model<2>& m, double time_scale,
+                                          std::vector<std::string>& warnings) {
+  const ObjectReader r(scene["crack_tips"], "crack_tips", {"interval", "contour", "radius", "points", "volume_term"});
+  if (m.cracks.empty()) throw SceneError("crack_tips", "the scene declares no cracks (key \"cracks\")");
+  crack::TipSettings s;
+  s.interval = r.positive_or("interval", m.output.global_interval, time_scale);
+  const std::string shape = r.string_or("contour", "circle");
+  if (shape == "rectangle") s.contour = crack::TipSettings::Contour::Rectangle;
+  else if (shape != "circle") throw SceneError(r.at("contour"), "unknown contour \"" + shape + "\"; valid: circle, rectangle");
+  s.radius = r.positive_or("radius", 2.0);
+  if (s.radius < 1.0)
+    throw SceneError(r.at("radius"), "at least 1 cell (the contour must reach past the tip's own cell; default 2)");
+  // 16 suffice on the circle (seed 000); the square's corners need 32 for the same accuracy.
+  s.points = r.integer_or("points", s.contour == crack::TipSettings::Contour::Circle ? 16 : 32, 16, 100000);
+  if (r.has("volume_term")) {
+    if (!r["volume_term"].is_boolean()) throw SceneError(r.at("volume_term"), "expected true or false");
+    s.volume_term = r["volume_term"].get<bool>();
+  }
+  // Every contour, with the nodes it interpolates from, must lie inside the grid.
+  const double h = m.grid.h;
+  const double extent = s.radius * h * (s.contour == crack::TipSettings::Contour::Circle ? 1.0 : std::sqrt(2.0)) + h;
+  bool any = false;
+  for (const auto& c : m.cracks)
+    for (int end = 0; end < 2; ++end) {
+      if (!c.tip[end]) continue;
+      any = true;
+      const Vec<2> x = crack::tip_frame(c, end).tip;
+      if ((x.array() - extent < m.grid.origin.array()).any() || (x.array() + extent > m.grid.upper().array()).any())
+        throw SceneError("crack_tips.radius", "the contour around the " + std::string(end ? "end" : "start") +
+                                                  " tip of crack '" + c.name + "' leaves the grid; enlarge the grid");
+      warn_contour_meets_cracks(m, s, c, end, warnings);
+      for (std::size_t p = 0; p < m.particles.size(); ++p)
+        if ((m.particles.x[p] - x).norm() <= extent) {
+          double g, nu;
+          if (!m.materials[m.particles.material[p]]->isotropic_elastic(g, nu))
+            throw SceneError("crack_tips", "crack '" + c.name + "': K from J needs an isotropic elastic material at its tips");
+          break;
+        }
+    }
+  if (!any) throw SceneError("crack_tips", "no crack has a tip (every end lies outside the material, or \"tips\": \"none\")");
+  return s;
+}
+
+template <int Dim>
+Model<Dim> build_model(const json& scene) {
+  ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "grid", "mpm", "materials",
+                               "bodies", "loads", "cracks", "crack_tips", "damping", "time", "output", "checks"});
+  if (top.has("method") && top.string("method") != "mpm")  // peridynamics: libmpm/pd/pd_scene.cpp
+    throw SceneError("method", "build_model reads MPM scenes only (\"method\": \"mpm\")");
+  register_builtin_materials();
+  Model<Dim> m;
+  const UnitSystem units = UnitSystem::from_json(scene.value("units", json()), "units");
+  const double L = units.factor(Quantity::Length);
+  m.title = top.string_or("title", "");
+  double thickness = 1.0;
+  m.analysis = scene::read_analysis(scene, L, thickness);
+  if (dimension_of(m.analysis) != Dim) throw SceneError("analysis.type", "dimension mismatch");
+
+  // --- method -------------------------------------------------------------------------------
+  if (top.has("mpm")) {
+    ObjectReader r(scene["mpm"], "mpm", {"shape_function", "stress_update"});
+    const std::string sf = r.string_or("shape_function", "ugimp");
+    if (sf == "linear") m.shape_function = ShapeFunctionKind::Linear;
+    else if (sf == "ugimp") m.shape_function = ShapeFunctionKind::UGimp;
+    else throw SceneError("mpm.shape_function", "unknown shape function '" + sf + "'; valid: linear, ugimp");
+    const std::string su = r.string_or("stress_update", "USAVG");
+    auto s = scheme_from_name(su);
+    if (!s) throw SceneError("mpm.stress_update", "unknown scheme '" + su + "'; valid: USL, MUSL, USF, USAVG");
+    m.scheme = *s;
+  }
+
+  // --- materials ------------------------------------------------------------------------------
+  std::map<std::string, int> material_index;
+  const json& mats = array_at(scene, "materials", true);
+  if (mats.empty()) throw SceneError("materials", "at least one material is needed");
+  for (std::size_t i = 0; i < mats.size(); ++i) {
+    const std::string path = index_path("materials", i);
+    if (!mats[i].is_object()) throw SceneError(path, "expected an object");
+    if (!mats[i].contains("name")) throw SceneError(path + ".name", "missing");
+    if (!mats[i]["name"].is_string()) throw SceneError(path + ".name", "expected a string");
+    if (!mats[i].contains("type")) throw SceneError(path + ".type", "missing");
+    if (!mats[i]["type"].is_string()) throw SceneError(path + ".type", "expected a string");
+    // Each material style checks its own keys (linear_elastic.cpp).
+    const std::string name = mats[i]["name"].get<std::string>();
+    const std::string type = mats[i]["type"].get<std::string>();
+    if (material_index.count(name)) throw SceneError(path + ".name", "duplicate material name '" + name + "'");
+    auto& reg = MaterialRegistry<Dim>::instance();
+    if (!reg.has(type))
+      throw SceneError(path + ".type", "unknown material type '" + type + "'; valid: " + reg.names_joined());
+    m.materials.push_back(reg.create(type, MaterialArgs{mats[i], path, units, m.analysis}));
+    material_index[name] = static_cast<int>(i);
+  }
+
+  // --- bodies (shapes first, so the grid can be derived from them) ---------------------------
+  const json& bodies = array_at(scene, "bodies", true);
+  if (bodies.empty()) throw SceneError("bodies", "at least one body is needed");
+  std::vector<std::unique_ptr<geom::Shape<Dim>>> shapes;
+  geom::Box<Dim> all;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const std::string path = index_path("bodies", i);
+    ObjectReader r(bodies[i], path,
+                   {"name", "material", "shape", "particles_per_cell", "velocity", "angular_velocity", "rotation_center",
+                    "thickness"});
+    if (!r.has("shape")) throw SceneError(r.at("shape"), "missing");
+    shapes.push_back(geom::parse_shape<Dim>(bodies[i]["shape"], r.at("shape"), L));
+    const auto b = shapes.back()->bounds();
+    all = i == 0 ? b : all.united(b);
+  }
+
+  // --- grid -----------------------------------------------------------------------------------
+  {
+    if (!top.has("grid")) throw SceneError("grid", "missing (needs at least cell_size)");
+    ObjectReader r(scene["grid"], "grid", {"cell_size", "min", "max", "margin_cells"});
+    const double h = r.positive("cell_size", L);
+    m.grid.h = h;
+    if (r.has("min") != r.has("max"))
+      throw SceneError(r.has("min") ? "grid.max" : "grid.min", "give both grid.min and grid.max, or neither");
+    if (r.has("min")) {
+      if (r.has("margin_cells"))
+        throw SceneError("grid.margin_cells", "only used for a derived grid; remove it or remove grid.min/grid.max");
+      const Vec<Dim> lo = r.vec<Dim>("min", L), hi = r.vec<Dim>("max", L);
+      for (int d = 0; d < Dim; ++d) {
+        const double cells = (hi[d] - lo[d]) / h;
+        if (cells > 1e8) throw SceneError("grid.cell_size", "the grid would have more than 1e8 cells along one axis");
+        if (!(cells >= 1.0)) throw SceneError("grid.max", "grid.max must exceed grid.min by at least one cell");
+        if (std::fabs(cells - std::round(cells)) > 1e-6)
+          throw SceneError("grid.max", "grid.max - grid.min must be a whole number of cells along axis " +
+                                           std::to_string(d) + " (got " + std::to_string(cells) + " cells)");
+        m.grid.nodes[d] = static_cast<int>(std::round(cells)) + 1;
+      }
+      m.grid.origin = lo;
+    } else {
+      // Derived: bodies' bounds plus a margin, snapped to multiples of h so that grid lines pass
+      // through the origin (symmetry planes and body edges at round coordinates lie on grid lines).
+      const int margin = r.integer_or("margin_cells", 2, 2, 1000);
+      for (int d = 0; d < Dim; ++d) {
+        const double lo = std::floor(all.lo[d] / h + 1e-9) - margin;
+        const double hi = std::ceil(all.hi[d] / h - 1e-9) + margin;
+        if (hi - lo > 1e8) throw SceneError("grid.cell_size", "the grid would have more than 1e8 cells along one axis");
+        m.grid.origin[d] = lo * h;
+        m.grid.nodes[d] = static_cast<int>(hi - lo) + 1;
+      }
+    }
+    double nodes = 1;
+    for (int d = 0; d < Dim; ++d) nodes *= m.grid.nodes[d];
+    if (nodes > 2e9) throw SceneError("grid.cell_size", "the grid would have more than 2e9 nodes");
+  }
+
+  // --- particles --------------------------------------------------------------------------------
+  std::vector<BodyLattice<Dim>> lattices(bodies.size());
+  const int K = m.shape_function == ShapeFunctionKind::UGimp ? 3 : 2;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const std::string path = index_path("bodies", i);
+    ObjectReader r(bodies[i], path,
+                   {"name", "material", "shape", "particles_per_cell", "velocity", "angular_velocity", "rotation_center",
+                    "thickness"});
+    Body b;
+    b.name = r.string_or("name", "body" + std::to_string(i));
+    const std::string mat = r.string("material");
+    if (!material_index.count(mat)) throw SceneError(r.at("material"), "no material named '" + mat + "'");
+    b.material = material_index[mat];
+    const int n = r.integer_or("particles_per_cell", 2, 1, 8);
+    if (Dim == 3 && r.has("thickness")) throw SceneError(r.at("thickness"), "a 3D body has no thickness");
+    b.thickness = Dim == 2 ? r.positive_or("thickness", thickness, L) : 1.0;
+    const Vec<Dim> v0 = r.has("velocity") ? r.vec<Dim>("velocity", units.factor(Quantity::Velocity))
+                                          : Vec<Dim>::Zero();
+    const auto& shape = *shapes[i];
+    const auto bb = shape.bounds();
+    const double h = m.grid.h;
+    std::array<int64_t, Dim> c0, c1;
+    for (int d = 0; d < Dim; ++d) {
+      c0[d] = static_cast<int64_t>(std::floor((bb.lo[d] - m.grid.origin[d]) / h)) - 1;
+      c1[d] = static_cast<int64_t>(std::ceil((bb.hi[d] - m.grid.origin[d]) / h)) + 1;
+    }
+    auto& P = m.particles;
+    b.first = P.size();
+    const double sub = h / n;
+    const double vol = std::pow(sub, Dim) * (Dim == 2 ? b.thickness : 1.0);
+    const double rho = m.materials[b.material]->density();
+    auto& lat = lattices[i];
+    lat.n = n;
+    // Cell columns along x outermost, so particles of one x strip are contiguous in memory.
+    std::array<int64_t, Dim> q;
+    for (q[0] = c0[0] * n; q[0] < c1[0] * n; ++q[0])
+      for (q[1] = c0[1] * n; q[1] < c1[1] * n; ++q[1])
+        for (int64_t z = (Dim == 3 ? c0[Dim - 1] * n : 0); z < (Dim == 3 ? c1[Dim - 1] * n : 1); ++z) {
+          if constexpr (Dim == 3) q[2] = z;
+          Vec<Dim> x;
+          for (int d = 0; d < Dim; ++d) x[d] = m.grid.origin[d] + sub * (q[d] + 0.5);
+          if (!shape.contains(x)) continue;
+          // Every node of the particle's stencil must exist.
+          for (int d = 0; d < Dim; ++d) {
+            if (!stencil_fits((x[d] - m.grid.origin[d]) / h, m.grid.nodes[d], K))
+              throw SceneError(r.at("shape"), "body '" + b.name + "' reaches outside the grid along axis " +
+                                                  std::string(1, "xyz"[d]) + " (a particle at " +
+                                                  std::to_string(x[d]) + " m needs grid nodes beyond the grid; "
+                                                  "enlarge grid.min/grid.max)");
+          }
+          const std::size_t p = P.size();
+          P.resize(p + 1);
+          P.x[p] = x;
+          P.v[p] = v0;
+          P.u[p].setZero();
+          P.stress[p].setZero();
+          P.strain[p].setZero();
+          P.volume0[p] = vol;
+          P.mass[p] = rho * vol;
+          P.half_width[p] = 0.5 / n;
+          P.material[p] = b.material;
+          if constexpr (Dim == 2) P.rotation[p] = 0.0;
+          LatticeKey<Dim> key{q};
+          lat.occupied.insert(key.hash());
+          lat.coord.push_back(q);
+        }
+    b.count = P.size() - b.first;
+    if (b.count == 0)
+      throw SceneError(r.at("shape"), "body '" + b.name + "' holds no particle centre at this cell size");
+    if (r.has("angular_velocity")) {
+      // Rigid rotation about the body's centroid: v = v0 + w x (x - c).
+      if constexpr (Dim == 3) {
+        throw SceneError(r.at("angular_velocity"), "only for 2D bodies (a rotation rate about z)");
+      } else {
+        const double w = r.number("angular_velocity", units.factor(Quantity::InverseTime));
+        Vec<Dim> c = Vec<Dim>::Zero();
+        if (r.has("rotation_center")) {
+          c = r.vec<Dim>("rotation_center", L);
+        } else {
+          for (std::size_t p = b.first; p < P.size(); ++p) c += P.x[p];
+          c /= static_cast<double>(b.count);
+        }
+        for (std::size_t p = b.first; p < P.size(); ++p) P.v[p] += w * Vec<2>(-(P.x[p].y() - c.y()), P.x[p].x() - c.x());
+      }
+    }
+    for (const auto& other : m.bodies)
+      if (other.name == b.name) throw SceneError(r.at("name"), "duplicate body name '" + b.name + "'");
+    m.bodies.push_back(b);
+  }
+
+  // --- cracks (2D, seed 002) --------------------------------------------------------------------
+  if (top.has("cracks")) {
+    if constexpr (Dim == 3) {
+      throw SceneError("cracks", "3D crack surfaces are not supported yet (cracks are 2D polylines)");
+    } else {
+      m.cracks = crack::parse_cracks(scene["cracks"], "cracks", L);
+      check_cracks(m);
+      resolve_tips(m);
+    }
+  }
+
+  // --- loads ------------------------------------------------------------------------------------
+  const json& loads = array_at(scene, "loads", false);
+  std::map<int64_t, std::pair<uint8_t, Vec<Dim>>> conditions;
+  const double h = m.grid.h;
+  auto node_loop = [&](const Vec<Dim>& lo, const Vec<Dim>& hi, auto&& fn) {
+    std::array<int, Dim> a, b, ijk;
+    for (int d = 0; d < Dim; ++d) {
+      a[d] = std::max(0, static_cast<int>(std::ceil((lo[d] - m.grid.origin[d]) / h - 1e-6)));
+      b[d] = std::min(m.grid.nodes[d] - 1, static_cast<int>(std::floor((hi[d] - m.grid.origin[d]) / h + 1e-6)));
+    }
+    int count = 0;
+    for (ijk[0] = a[0]; ijk[0] <= b[0]; ++ijk[0])
+      for (ijk[1] = a[1]; ijk[1] <= b[1]; ++ijk[1])
+        for (int k = (Dim == 3 ? a[Dim - 1] : 0); k <= (Dim == 3 ? b[Dim - 1] : 0); ++k) {
+          if constexpr (Dim == 3) ijk[2] = k;
+          fn(static_cast<int64_t>(m.grid.index(ijk)));
+          ++count;
+        }
+    return count;
+  };
+  auto read_region = [&](const ObjectReader& r, Vec<Dim>& lo, Vec<Dim>& hi) {  // the whole grid by default
+    lo = m.grid.origin;
+    hi = m.grid.upper();
+    if (r.has("region")) scene::read_region<Dim>(r, "region", L, lo, hi);
+  };
+  for (std::size_t i = 0; i < loads.size(); ++i) {
+    const std::string path = index_path("loads", i);
+    if (!loads[i].is_object() || !loads[i].contains("type"))
+      throw SceneError(path + ".type", "missing (traction, body_force, velocity or symmetry)");
+    const std::string type = loads[i]["type"].is_string() ? loads[i]["type"].get<std::string>() : "";
+    if (type == "traction") {
+      ObjectReader r(loads[i], path, {"type", "name", "body", "region", "face", "traction", "rise_time"});
+      TractionLoad<Dim> t;
+      t.name = r.string_or("name", path);
+      t.traction = r.vec<Dim>("traction", units.factor(Quantity::Stress));
+      t.time_function.rise_time = r.has("rise_time") ? r.positive("rise_time", units.factor(Quantity::Time)) : 0.0;
+      const std::string face = r.string("face");
+      if (face.size() != 2 || (face[0] != '+' && face[0] != '-'))
+        throw SceneError(r.at("face"), "expected a face such as \"+y\" or \"-x\"");
+      t.side = face[0] == '+' ? 1 : -1;
+      t.axis = scene::axis_of<Dim>(face.substr(1), r.at("face"));
+      Vec<Dim> lo, hi;
+      read_region(r, lo, hi);
+      int body = -1;
+      if (r.has("body")) {
+        const std::string bn = r.string("body");
+        for (std::size_t k = 0; k < m.bodies.size(); ++k)
+          if (m.bodies[k].name == bn) body = static_cast<int>(k);
+        if (body < 0) throw SceneError(r.at("body"), "no body named '" + bn + "'");
+      }
+      for (std::size_t k = 0; k < m.bodies.size(); ++k) {
+        if (body >= 0 && static_cast<int>(k) != body) continue;
+        const auto& B = m.bodies[k];
+        const auto& lat = lattices[k];
+        for (std::size_t j = 0; j < B.count; ++j) {
+          const std::size_t p = B.first + j;
+          const auto& x = m.particles.x[p];
+          bool inside = true;
+          for (int d = 0; d < Dim; ++d) inside = inside && x[d] >= lo[d] - 1e-9 * h && x[d] <= hi[d] + 1e-9 * h;
+          if (!inside) continue;
+          LatticeKey<Dim> nb{lat.coord[j]};
+          nb.c[t.axis] += t.side;
+          if (lat.occupied.count(nb.hash())) continue;  // not a boundary face of the body
+          t.particles.push_back(static_cast<int32_t>(p));
+          t.face_area.push_back(m.particles.volume0[p] / (h / lat.n));
+        }
+      }
+      if (t.particles.empty())
+        throw SceneError(path, "no particle face on side " + face + " lies inside the region: nothing would be loaded");
+      m.tractions.push_back(std::move(t));
+    } else if (type == "body_force") {
+      ObjectReader r(loads[i], path, {"type", "acceleration"});
+      m.gravity += r.vec<Dim>("acceleration", units.factor(Quantity::Acceleration));
+    } else if (type == "velocity") {
+      ObjectReader r(loads[i], path, {"type", "region", "velocity"});
+      if (!r.has("region")) throw SceneError(r.at("region"), "missing: a velocity condition needs a region");
+      Vec<Dim> lo, hi;
+      read_region(r, lo, hi);
+      const auto [mask, v] = r.partial_vec<Dim>("velocity", units.factor(Quantity::Velocity));
+      const int count = node_loop(lo, hi, [&](int64_t n) {
+        auto& c = conditions[n];
+        c.first |= mask;
+        for (int d = 0; d < Dim; ++d)
+          if (mask & (1u << d)) c.second[d] = v[d];
+      });
+      if (!count) throw SceneError(r.at("region"), "no grid node lies inside the region");
+    } else if (type == "symmetry") {
+      ObjectReader r(loads[i], path, {"type", "axis", "position"});
+      const int axis = scene::axis_of<Dim>(r.string("axis"), r.at("axis"));
+      const double pos = r.number("position", L);
+      const double cells = (pos - m.grid.origin[axis]) / h;
+      if (std::fabs(cells - std::round(cells)) > 1e-6 || cells < 0 || cells > m.grid.nodes[axis] - 1)
+        throw SceneError(r.at("position"), "a symmetry plane must lie on a grid line inside the grid (grid lines "
+                                           "are at origin + k * cell_size)");
+      Vec<Dim> lo = m.grid.origin, hi = m.grid.upper();
+      lo[axis] = hi[axis] = m.grid.origin[axis] + std::round(cells) * h;
+      node_loop(lo, hi, [&](int64_t n) {
+        auto& c = conditions[n];
+        c.first |= uint8_t(1u << axis);
+        c.second[axis] = 0.0;
+      });
+    } else {
+      throw SceneError(path + ".type", "unknown load type '" + type + "'; valid: traction, body_force, velocity, symmetry");
+    }
+  }
+  for (auto& [node, c] : conditions) {
+    m.conditions.node.push_back(node);
+    m.conditions.mask.push_back(c.first);
+    m.conditions.velocity.push_back(c.second);
+  }
+
+  // --- damping, time, output (shared sections) ----------------------------------------------------
+  m.damping = scene::read_damping(scene, units);
+  {
+    double cmax = 0.0, vmax = 0.0;
+    for (const auto& b : m.bodies) cmax = std::max(cmax, m.materials[b.material]->wave_speed());
+    for (const auto& v : m.particles.v) vmax = std::max(vmax, v.norm());
+    scene::read_time(scene, units, m.grid.h / (cmax + vmax), "cell / (wave speed + particle speed)",
+                     "no material has a wave speed", m);
+  }
+  scene::read_output(scene, units, kFieldNames, "", false, m);
+  if (top.has("crack_tips")) {
+    if constexpr (Dim == 3)
+      throw SceneError("crack_tips", "crack-tip parameters are computed for 2D cracks only");
+    else
+      m.crack_tips = read_crack_tips(scene, m, units.factor(Quantity::Time), m.warnings);
+    m.output.tip_interval = m.crack_tips->interval;
+  }
+  // Bodies that share grid nodes with very different mass per particle make the node's effective
+  // wave speed exceed the material estimate; linear shape functions then need a smaller CFL
+  // (docs/validation.md, beam impact: 240x, unstable at CFL 0.5, stable at 0.1).
+  if (m.shape_function == ShapeFunctionKind::Linear && m.bodies.size() > 1) {
+    double lo = 1e300, hi = 0;
+    std::string light, heavy;
+    for (const auto& b : m.bodies) {
+      const double mp = m.particles.mass[b.first];
+      if (mp < lo) lo = mp, light = b.name;
+      if (mp > hi) hi = mp, heavy = b.name;
+    }
+    if (hi > 10 * lo)
+      m.warnings.push_back("bodies '" + heavy + "' and '" + light + "' differ " + std::to_string(int(hi / lo)) +
+                           "x in particle mass: with linear shape functions contact between them can be unstable at "
+                           "CFL 0.5 (use time.cfl 0.1 or mpm.shape_function ugimp)");
+  }
+  scene::read_checks(scene, m);
+  return m;
+}
+
+template Model<2> build_model<2>(const json&);
+template Model<3> build_model<3>(const json&);
+
+}  // namespace cleave

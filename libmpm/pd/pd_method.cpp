@@ -1,0 +1,228 @@
+// Bond-based peridynamics behind the method seam (method/method.hpp), registered as
+// "peridynamics": the lattice built from the scene (pd_scene.cpp), the velocity-Verlet solver
+// (pd_solver.cpp), and what a run writes: point frames (displacement, velocity, damage, stress
+// estimated from bond forces, ...), global.csv (energies, works, broken bonds), crack_tips.csv
+// (time, crack, tip, x, y[, z], speed: crack = the tracker's index, tip = 0) and the restart state;
+// run.json records the first detected branching of a 2D crack.
+#include "libmpm/pd/pd_method.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "libmpm/io/particle_fields.hpp"
+#include "libmpm/io/point_set.hpp"
+#include "libmpm/pd/pd_scene.hpp"
+#include "libmpm/pd/pd_solver.hpp"
+#include "libmpm/pd/tips.hpp"
+
+namespace cleave::pd {
+
+template <int Dim>
+io::PointSet pd_point_set(const PdSystem<Dim>& m, const PdSolver<Dim>& s) {
+  const auto& P = m.points;
+  const auto& fields = m.output.fields;
+  const std::size_t n = P.size();
+  io::PointSet ps;
+  ps.points.assign(3 * n, 0.0);
+  // Current positions, as for MPM particles (the renderer draws the deformed body).
+  for (std::size_t p = 0; p < n; ++p)
+    for (int d = 0; d < Dim; ++d) ps.points[3 * p + d] = P.x0[p][d] + P.u[p][d];
+  auto add = [&](const char* name, int comps, auto&& fill) {
+    if (!fields.count(name)) return;
+    io::PointArray a{name, comps, std::vector<double>(comps * n, 0.0)};
+    for (std::size_t p = 0; p < n; ++p) fill(p, &a.values[comps * p]);
+    ps.arrays.push_back(std::move(a));
+  };
+  std::vector<Sym<Dim>> sig;
+  if (fields.count("stress") || fields.count("von_mises") || fields.count("principal_stress_difference"))
+    sig = s.stress();
+  std::vector<double> phi;
+  if (fields.count("damage")) phi = s.damage();
+  auto vtk6 = [](const Sym<Dim>& t, double* o) {
+    for (int k = 0; k < kSymComponents<Dim>; ++k) o[k] = t[k];  // 2D: xx yy zz xy, then 0 0
+  };
+  add("displacement", 3, [&](std::size_t p, double* o) { for (int d = 0; d < Dim; ++d) o[d] = P.u[p][d]; });
+  add("velocity", 3, [&](std::size_t p, double* o) { for (int d = 0; d < Dim; ++d) o[d] = P.v[p][d]; });
+  add("damage", 1, [&](std::size_t p, double* o) { o[0] = phi[p]; });
+  add("stress", 6, [&](std::size_t p, double* o) { vtk6(sig[p], o); });
+  add("material", 1, [&](std::size_t p, double* o) { o[0] = P.material[p]; });
+  add("volume", 1, [&](std::size_t p, double* o) { o[0] = P.volume[p]; });
+  add("size", 1, [&](std::size_t p, double* o) { o[0] = m.dx; });  // each point's lattice cell
+  add("von_mises", 1, [&](std::size_t p, double* o) { o[0] = io::von_mises<Dim>(sig[p]); });
+  add("principal_stress_difference", 1,
+      [&](std::size_t p, double* o) { o[0] = io::principal_stress_difference<Dim>(sig[p]); });
+  return ps;
+}
+
+template io::PointSet pd_point_set<2>(const PdSystem<2>&, const PdSolver<2>&);
+template io::PointSet pd_point_set<3>(const PdSystem<3>&, const PdSolver<3>&);
+
+namespace {
+
+std::string format(const char* f, auto... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, f, args...);
+  return buf;
+}
+
+template <int Dim>
+class PdMethod final : public Method<Dim> {
+ public:
+  explicit PdMethod(const nlohmann::json& scene)
+      : owned_(std::make_unique<PdSystem<Dim>>(build_pd_system<Dim>(scene))), m_(*owned_), solver_(m_) { init(); }
+  explicit PdMethod(PdSystem<Dim>& m) : m_(m), solver_(m_) { init(); }
+
+  const char* name() const override { return "peridynamics"; }
+  const RunSettings& settings() const override { return m_; }
+  std::pair<double, std::string> work_per_step() const override { return {double(m_.bond_count), "bond"}; }
+
+  std::vector<std::string> describe() const override {
+    const auto& m = m_;
+    const auto& k = m.materials[0].k;
+    return {format("%s%dD %s, peridynamics: %zu points in %zu bodies, %zu bonds (%zu removed by pre-cracks)",
+                   m.title.empty() ? "" : (m.title + ": ").c_str(), Dim,
+                   m.analysis == Analysis::PlaneStress ? "plane stress"
+                   : m.analysis == Analysis::PlaneStrain ? "plane strain" : "solid",
+                   m.points.size(), m.bodies.size(), m.bond_count, m.precrack_bonds),
+            format("lattice: dx = %.6g m, horizon = %d dx = %.6g m; %s: c = %.6g, s0 = %.6g, implied nu = %.4g", m.dx,
+                   m.horizon_factor, m.delta, m.materials[0].name.c_str(), k.c, k.s0, k.implied_nu),
+            format("dt = %.6g s (stable limit, seed 003 eq. 15: %.6g s), %ld steps to %.6g s", m.dt, m.stable_dt,
+                   static_cast<long>(std::ceil(m.end_time / m.dt - 1e-9)), m.end_time),
+            format("output: every %.6g s (%zu fields), global.csv every %.6g s, crack_tips.csv every %.6g s "
+                   "(%zu trackers)",
+                   m.output.interval, m.output.fields.size(), m.output.global_interval, m.output.tip_interval,
+                   m.trackers.size())};
+  }
+
+  StepProblem step() override {
+    solver_.step();
+    return {};
+  }
+  double time() const override { return solver_.time(); }
+  long step_count() const override { return solver_.step_count(); }
+  std::string fastest_point() const override {
+    const auto& P = m_.points;
+    std::size_t fast = 0;
+    for (std::size_t p = 1; p < P.size(); ++p)
+      if (P.v[p].squaredNorm() > P.v[fast].squaredNorm()) fast = p;
+    std::ostringstream s;
+    s << "point " << fast << " at (";
+    for (int d = 0; d < Dim; ++d) s << (d ? ", " : "") << P.x0[fast][d] + P.u[fast][d];
+    s << ") m, speed " << P.v[fast].norm() << " m/s";
+    return s.str();
+  }
+
+  std::vector<std::string> global_columns() const override {
+    std::vector<std::string> c = {"time", "step", "kinetic_energy", "strain_energy", "external_work",
+                                  "damping_loss", "total_energy", "broken_bonds", "momentum_x", "momentum_y"};
+    if (Dim == 3) c.push_back("momentum_z");
+    return c;
+  }
+  GlobalRow global_row() const override {
+    const auto g = solver_.global_state();
+    GlobalRow r;
+    r.values = {g.time, double(g.step), g.kinetic, g.strain, g.external_work, g.damping_loss, g.total(), double(g.broken)};
+    for (int d = 0; d < Dim; ++d) r.values.push_back(g.momentum[d]);
+    r.total_energy = g.total();
+    r.external_work = g.external_work;
+    return r;
+  }
+
+  std::vector<std::string> frame_series() const override { return {"particles"}; }
+  io::PointSet frame(std::size_t) override { return pd_point_set<Dim>(m_, solver_); }
+
+  std::vector<std::string> tip_columns() const override {
+    std::vector<std::string> c = {"time", "crack", "tip", "x", "y"};
+    if (Dim == 3) c.push_back("z");
+    c.push_back("speed");
+    return c;
+  }
+  // The tracked tips now; the first branching of a 2D crack is recorded for run.json.
+  std::vector<std::vector<double>> tip_rows() override {
+    std::vector<std::vector<double>> rows;
+    const auto phi = solver_.damage();
+    const double t = solver_.time();
+    for (std::size_t k = 0; k < m_.trackers.size(); ++k) {
+      const auto tip = find_tip<Dim>(m_, phi, m_.trackers[k], m_.tip_threshold);
+      if (!tip) continue;
+      const Vec<Dim> x = m_.points.x0[*tip];
+      // Seed 003: v_i = |x_i - x_{i-1}| / (t_i - t_{i-1}) between successive tip records.
+      const double speed = last_tip_time_[k] >= 0 && t > last_tip_time_[k]
+                               ? (x - last_tip_[k]).norm() / (t - last_tip_time_[k]) : 0.0;
+      std::vector<double> row = {t, double(k), 0.0};
+      for (int d = 0; d < Dim; ++d) row.push_back(x[d]);
+      row.push_back(speed);
+      rows.push_back(std::move(row));
+      last_tip_[k] = x;
+      last_tip_time_[k] = t;
+    }
+    if constexpr (Dim == 2) {
+      if (branch_.time < 0) {
+        // Only columns ahead of the pre-cracks' damaged band at t = 0 can show a fork.
+        if (auto b = find_branch(m_, phi, -std::numeric_limits<double>::infinity(), m_.tip_threshold))
+          branch_ = {t, b->x, b->y};
+      }
+    }
+    return rows;
+  }
+  nlohmann::json run_info() const override {
+    nlohmann::json j;
+    nlohmann::json names = nlohmann::json::array();
+    for (const auto& t : m_.trackers) names.push_back(t.name);
+    j["crack_tip_trackers"] = names;  // crack_tips.csv "crack" = index into this list
+    if (branch_.time >= 0) j["branching"] = {{"time", branch_.time}, {"x", branch_.x}, {"y", branch_.y}};
+    else j["branching"] = nullptr;
+    return j;
+  }
+
+  void save(StateWriter& w) const override {
+    w.value(solver_.time()), w.value(solver_.step_count());
+    w.value(solver_.external_work()), w.value(solver_.damping_loss());
+    w.value(branch_);
+    const auto& P = m_.points;
+    w.array(P.u), w.array(P.v), w.array(P.a), w.array(m_.nb.intact);
+    w.array(last_tip_), w.array(last_tip_time_);
+  }
+  // The solver computed the initial accelerations when it was built; they are replaced by the
+  // saved ones (bit-identical continuation) together with u, v and the bond states.
+  void load(StateReader& r) override {
+    double t = 0, work = 0, damp = 0;
+    long step = 0;
+    r.value(t), r.value(step), r.value(work), r.value(damp);
+    r.value(branch_);
+    auto& P = m_.points;
+    r.array(P.u, "points"), r.array(P.v, "points"), r.array(P.a, "points"), r.array(m_.nb.intact, "bonds");
+    r.array(last_tip_, "crack-tip trackers"), r.array(last_tip_time_, "crack-tip trackers");
+    solver_.restore(t, step, work, damp);
+  }
+
+ private:
+  void init() {
+    last_tip_.assign(m_.trackers.size(), Vec<Dim>::Constant(std::nan("")));
+    last_tip_time_.assign(m_.trackers.size(), -1.0);
+  }
+  struct Branch {
+    double time = -1.0, x = 0.0, y = 0.0;
+  };
+  std::unique_ptr<PdSystem<Dim>> owned_;  // null when the caller owns the system
+  PdSystem<Dim>& m_;
+  PdSolver<Dim> solver_;
+  std::vector<Vec<Dim>> last_tip_;
+  std::vector<double> last_tip_time_;
+  Branch branch_;
+};
+
+}  // namespace
+
+template <int Dim>
+std::unique_ptr<Method<Dim>> make_pd_method(PdSystem<Dim>& m) {
+  return std::make_unique<PdMethod<Dim>>(m);
+}
+template std::unique_ptr<Method<2>> make_pd_method<2>(PdSystem<2>&);
+template std::unique_ptr<Method<3>> make_pd_method<3>(PdSystem<3>&);
+
+}  // namespace cleave::pd
+
+CLEAVE_REGISTER_METHOD("peridynamics", cleave::pd::PdMethod)
