@@ -14,6 +14,7 @@
 #include <map>
 
 #include "libmpm/io/particle_fields.hpp"
+#include "libmpm/mpm/particle_output.hpp"
 #include "libmpm/mpm/mpm_method.hpp"
 #include "support.hpp"
 
@@ -35,7 +36,7 @@ void check_run_output(const nlohmann::json& scene, const std::string& tag) {
   char name[64];
   std::snprintf(name, sizeof name, "particles_%06d.vtu", sum.frames - 1);
   const fs::path vtu = out / name;
-  const io::PointSet expect = io::particle_point_set<Dim>(m, m.output.fields);
+  const io::PointSet expect = particle_point_set<Dim>(m, m.output.fields);
   ASSERT_EQ(expect.arrays.size(), Dim == 2 ? 11u : 10u);  // "rotation" is 2D only
 
   vtkNew<vtkXMLUnstructuredGridReader> reader;

@@ -16,13 +16,15 @@
 #include "libmpm/pd/pd_method.hpp"
 #include "libmpm/pd/pd_scene.hpp"
 #include "libmpm/pd/pd_solver.hpp"
-#include "libmpm/pd/precrack.hpp"
+#include "libmpm/crack/surface.hpp"
+#include "libmpm/crack/surface3d.hpp"
 #include "libmpm/pd/tips.hpp"
 #include "libmpm/method/run_scene.hpp"
 #include "libmpm/mpm/mpm_scene.hpp"
 
 using namespace cleave;
 using namespace cleave::pd;
+using crack::segment_hits_triangle;
 using nlohmann::json;
 namespace fs = std::filesystem;
 

@@ -636,7 +636,9 @@ TEST(Series, ErrorsNameTheFile) {
   EXPECT_THROW(read_particle_frame(dir, 0), std::runtime_error);
 }
 
-TEST(Rasterize, TimingOneMillionParticlesFullHd) {
+// Coverage at scale; the time is printed for information only (no test asserts wall time: a loaded
+// machine must not fail CI). cleave-render-bench measures it (docs/performance.md).
+TEST(Rasterize, OneMillionParticlesFullHdCoverTheImage) {
   const int N = 1000;
   const double s = 1e-3;
   ParticleFrame f;
@@ -680,5 +682,4 @@ TEST(Rasterize, TimingOneMillionParticlesFullHd) {
   const double one = time_it();
   std::printf("[ timing   ] rasterize_2d 1e6 particles -> 1920x1080: %.3f s (no OpenMP)\n", one);
 #endif
-  EXPECT_LT(one, 2.0);
 }

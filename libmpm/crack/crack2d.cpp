@@ -12,14 +12,18 @@
 
 namespace cleave::crack {
 
+// The laws the crack module implements (crack_fields.hpp), in the order the documentation lists them.
+CLEAVE_REGISTER_CONTACT_LAW("stick", 1, Stick, false)
+CLEAVE_REGISTER_CONTACT_LAW("frictionless", 2, Frictionless, false)
+CLEAVE_REGISTER_CONTACT_LAW("friction", 3, Friction, true)
+CLEAVE_REGISTER_CONTACT_LAW("none", 4, None, false)
+
 const char* contact_law_name(Crack2D::ContactLaw law) {
-  switch (law) {
-    case Crack2D::ContactLaw::Stick: return "stick";
-    case Crack2D::ContactLaw::Frictionless: return "frictionless";
-    case Crack2D::ContactLaw::Friction: return "friction";
-    case Crack2D::ContactLaw::None: return "none";
-  }
-  return "?";
+  const char* name = "?";
+  ContactLaws::instance().each([&](const std::string& n, const ContactLawStyle& s) {
+    if (s.law == law) name = n.c_str();  // the table's own key: lives as long as the program
+  });
+  return name;
 }
 
 namespace {
@@ -112,19 +116,19 @@ std::vector<Vec<2>> read_straight(const ObjectReader& r, double scale) {
 void read_contact(const ObjectReader& cr, Crack2D& c) {
   const ObjectReader r(cr["contact"], cr.at("contact"), {"law", "mu", "detection", "v_sep", "v_contact"});
   const std::string law = r.string("law");
-  bool known = false;
-  for (auto l : {Crack2D::ContactLaw::Stick, Crack2D::ContactLaw::Frictionless, Crack2D::ContactLaw::Friction,
-                 Crack2D::ContactLaw::None})
-    if (law == contact_law_name(l)) c.contact_law = l, known = true;
-  if (!known)
-    throw SceneError(r.at("law"), "unknown contact law \"" + law + "\"; valid laws: stick, frictionless, friction, none");
-  if (law == "friction") {
-    if (!r.has("mu")) throw SceneError(r.at("mu"), "missing (required for law \"friction\")");
+  const ContactLaws& laws = ContactLaws::instance();
+  const ContactLawStyle* style = laws.find(law);
+  if (!style) throw SceneError(r.at("law"), "unknown contact law \"" + law + "\"; valid laws: " + laws.names_joined());
+  c.contact_law = style->law;
+  if (style->takes_mu) {
+    if (!r.has("mu")) throw SceneError(r.at("mu"), "missing (required for law \"" + law + "\")");
     const double mu = r.number("mu");
     if (!(mu >= 0.0)) throw SceneError(r.at("mu"), "must be >= 0 (got " + r["mu"].dump() + ")");
     c.friction = mu;
   } else if (r.has("mu")) {
-    throw SceneError(r.at("mu"), "only valid with law \"friction\" (law is \"" + law + "\")");
+    auto with_mu = laws.names_where([](const std::string&, const ContactLawStyle& s) { return s.takes_mu; });
+    for (auto& n : with_mu) n = "\"" + n + "\"";
+    throw SceneError(r.at("mu"), "only valid with law " + join_names(with_mu, " or ") + " (law is \"" + law + "\")");
   }
   const std::string det = r.string_or("detection", "volume");
   if (det == "volume") {

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "libmpm/core/registry.hpp"
 #include "libmpm/core/types.hpp"
 #include "libmpm/crack/crossing.hpp"
 
@@ -23,7 +24,7 @@ struct Crack2D {
                                 // points[0] -> points[1] -> ... defines above (left) / below (right)
   // Contact law, scene names "stick" | "frictionless" | "friction" (Coulomb, mu) | "none" (faces may
   // interpenetrate: for cracks known to stay open, and for the crack patch test against a half
-  // model, which has none).
+  // model, which has none). The names are registered in crack2d.cpp (ContactLaws below).
   enum class ContactLaw { Stick, Frictionless, Friction, None } contact_law = ContactLaw::Frictionless;
   double friction = 0.0;                     // Coulomb mu, only for "friction"
   // Contact detection: seed 002's nodal volume (V_rel > v_contact: contact; V_rel < v_sep: apart;
@@ -131,11 +132,31 @@ inline uint32_t field_key(const std::vector<Crack2D>& cracks, const Vec<2>& x, c
 std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::string& key_path,
                                   double length_scale);
 
-// Exact closed-segment intersection test (shared end points count): used by the
-// self-intersection check and exposed for tests.
+// Contact laws by scene name ("contact": {"law": ...}). The crack module's hot loops switch on the
+// enum, once per pass; this table is the name <-> law mapping that the reader consults (so an
+// unknown name lists the registered ones) and the CLI prints. takes_mu: the law needs "mu".
+struct ContactLawStyle {
+  Crack2D::ContactLaw law;
+  bool takes_mu;
+};
+using ContactLaws = NameTable<ContactLawStyle>;
+
 // The scene name of a contact law ("stick", "frictionless", "friction", "none").
 const char* contact_law_name(Crack2D::ContactLaw law);
 
+// Exact closed-segment intersection test (shared end points count): used by the
+// self-intersection check and exposed for tests.
 bool segments_intersect(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c, const Vec<2>& d);
 
 }  // namespace cleave::crack
+
+// Registers a contact law under its scene name; rank orders the list of valid laws.
+#define CLEAVE_REGISTER_CONTACT_LAW(name, rank, law, takes_mu)                          \
+  namespace {                                                                           \
+  [[maybe_unused]] const bool CLEAVE_REGISTRAR(cleave_contact_law_) =                   \
+      ::cleave::crack::ContactLaws::instance().add(                                     \
+          name,                                                                         \
+          ::cleave::crack::ContactLawStyle{::cleave::crack::Crack2D::ContactLaw::law,   \
+                                           takes_mu},                                   \
+          rank);                                                                        \
+  }

@@ -3,6 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libmpm/core/error.hpp"
+#include "libmpm/geometry/json_fields.hpp"
+#include "libmpm/geometry/primitives.hpp"
+#include "libmpm/geometry/shape_reader.hpp"
+
 namespace cleave::geom {
 namespace {
 
@@ -96,5 +101,67 @@ bool polygon_contains(const Polyline& p, const Vec<2>& x) {
   }
   return winding != 0;
 }
+
+// --- scene readers: "polygon" and its extrusion "prism" ------------------------------------------
+namespace {
+
+using nlohmann::json;
+using detail::index_path;
+using detail::key_path;
+
+// Reads "points" and checks that they form a simple polygon with non-zero area; a self-crossing
+// outline has no meaningful inside, and silently picking one would seed the wrong body.
+Polyline outline(const ShapeReader& r, const json& j, const std::string& path) {
+  const std::string pp = key_path(path, "points");
+  const json& v = detail::require(j, "points", path);
+  if (!v.is_array() || v.size() < 3) {
+    throw SceneError(pp, "a polygon needs at least 3 points [[x, y], ...], got " +
+                             (v.is_array() ? std::to_string(v.size()) + " points" : detail::describe(v)));
+  }
+  Polyline p;
+  for (std::size_t i = 0; i < v.size(); ++i) p.push_back(r.scaled_numbers<2>(v[i], index_path(pp, i), {"x", "y"}));
+
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t next = (i + 1) % n;
+    if (p[i] != p[next]) continue;
+    const std::string hint = next == 0 ? "; the outline closes by itself, do not repeat the first point" : "";
+    throw SceneError(index_path(pp, next == 0 ? i : next),
+                     "repeats points[" + std::to_string(next == 0 ? next : i) + "]" + hint);
+  }
+
+  Box<2> box;
+  for (const Vec<2>& q : p) box = box.united(Box<2>{q, q});
+  const double extent = (box.hi - box.lo).maxCoeff();
+  const double tol = 1e-12 * extent;  // relative: scenes in metres and in millimetres behave alike
+  if (all_collinear(p, tol)) throw SceneError(pp, "polygon has zero area (all points lie on one line)");
+  if (auto hit = find_self_intersection(p)) {
+    auto edge = [n](int e) {
+      return "points[" + std::to_string(e) + "]-points[" + std::to_string((static_cast<std::size_t>(e) + 1) % n) + "]";
+    };
+    throw SceneError(pp, "polygon is not simple: edge " + edge(hit->first) + " and edge " + edge(hit->second) +
+                             " intersect (list the points in order around the outline)");
+  }
+  if (std::abs(signed_area(p)) <= tol * extent) throw SceneError(pp, "polygon has zero area");
+  return p;
+}
+
+std::unique_ptr<Shape<2>> polygon(const ShapeReader& r, const json& j, const std::string& path) {
+  return std::make_unique<Polygon>(outline(r, j, path));
+}
+
+std::unique_ptr<Shape<3>> prism(const ShapeReader& r, const json& j, const std::string& path) {
+  Polyline section = outline(r, j, path);
+  const std::string zp = key_path(path, "z");
+  const json& zv = detail::require(j, "z", path);
+  const Vec<2> z = r.scaled_numbers<2>(zv, zp, {"zmin", "zmax"});
+  if (!(z[1] > z[0])) throw SceneError(zp, "zmax must be greater than zmin, got " + raw(zv));
+  return std::make_unique<Prism>(std::move(section), z[0], z[1]);
+}
+
+}  // namespace
+
+CLEAVE_REGISTER_SHAPE("polygon", 4, 2, {"type", "points"}, "prism", &polygon, nullptr)
+CLEAVE_REGISTER_SHAPE("prism", 9, 3, {"type", "points", "z"}, "polygon", nullptr, &prism)
 
 }  // namespace cleave::geom

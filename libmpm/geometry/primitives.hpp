@@ -1,5 +1,6 @@
-// Primitive solids. Constructors take already-validated values in metres (parse_shape does the
-// checking and reports scene errors); they do not re-validate.
+// Primitive solids. Constructors take already-validated values in metres (the scene readers
+// registered in primitives.cpp and polygon.cpp do the checking and report scene errors); they do
+// not re-validate.
 #pragma once
 #include "libmpm/geometry/polygon.hpp"
 #include "libmpm/geometry/shape.hpp"

@@ -1,6 +1,7 @@
 // Solid geometry used to build bodies: a Shape answers "is this point inside?" and gives an
 // axis-aligned bounding box, which is all the particle seeder needs (it walks the box on a lattice
-// and keeps the points the shape contains). Shapes come from scene JSON through parse_shape.
+// and keeps the points the shape contains). Shapes come from scene JSON through parse_shape, which
+// looks the "type" up among the registered shape readers (shape_reader.hpp).
 #pragma once
 #include <limits>
 #include <memory>

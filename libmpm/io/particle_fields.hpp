@@ -1,16 +1,14 @@
-// Particle arrays as written to VTU: only the fields the scene asks for. Vectors are padded to 3
-// components and symmetric tensors expanded to VTK's 6 (XX, YY, ZZ, XY, YZ, XZ).
+// Per-point quantities every method writes the same way: symmetric tensors expanded to VTK's 6
+// components (XX, YY, ZZ, XY, YZ, XZ) and the scalars derived from a stress.
 #pragma once
-#include <set>
-#include <string>
+#include <array>
 
-#include "libmpm/io/point_set.hpp"
-#include "libmpm/mpm/model.hpp"
+#include "libmpm/core/types.hpp"
 
 namespace cleave::io {
 
 template <int Dim>
-PointSet particle_point_set(const Model<Dim>& m, const std::set<std::string>& fields);
+std::array<double, 6> to_vtk6(const Sym<Dim>& s);
 
 // Derived scalars of a stress (also used by the renderer's tests).
 template <int Dim>

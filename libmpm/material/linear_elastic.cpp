@@ -1,19 +1,5 @@
-// Registration of the built-in materials.
+// The linear elastic material registers itself under the scene name "linear_elastic"; the class is
+// in the header so that the stress pass can call it without a virtual call.
 #include "libmpm/material/linear_elastic.hpp"
 
-namespace cleave {
-
-void register_builtin_materials() {
-  static bool done = [] {
-    MaterialRegistry<2>::instance().add("linear_elastic", [](const MaterialArgs& a) {
-      return std::unique_ptr<Material<2>>(new LinearElastic<2>(a));
-    });
-    MaterialRegistry<3>::instance().add("linear_elastic", [](const MaterialArgs& a) {
-      return std::unique_ptr<Material<3>>(new LinearElastic<3>(a));
-    });
-    return true;
-  }();
-  (void)done;
-}
-
-}  // namespace cleave
+CLEAVE_REGISTER_MATERIAL("linear_elastic", cleave::LinearElastic)

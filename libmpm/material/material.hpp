@@ -47,7 +47,18 @@ struct MaterialArgs {
 template <int Dim>
 using MaterialRegistry = Registry<Material<Dim>, const MaterialArgs&>;
 
-// Registers the built-in materials (explicit, so a static library cannot drop them).
-void register_builtin_materials();
-
 }  // namespace cleave
+
+// Registers a material class template (taking the dimension, constructed from MaterialArgs) for 2D
+// and 3D under `name`, the scene's "type". Put it in the material's own .cpp.
+#define CLEAVE_REGISTER_MATERIAL(name, Class)                                                       \
+  namespace {                                                                                       \
+  [[maybe_unused]] const bool CLEAVE_REGISTRAR(cleave_material_2_) =                                \
+      ::cleave::MaterialRegistry<2>::instance().add(name, [](const ::cleave::MaterialArgs& a) {     \
+        return std::unique_ptr<::cleave::Material<2>>(new Class<2>(a));                             \
+      });                                                                                           \
+  [[maybe_unused]] const bool CLEAVE_REGISTRAR(cleave_material_3_) =                                \
+      ::cleave::MaterialRegistry<3>::instance().add(name, [](const ::cleave::MaterialArgs& a) {     \
+        return std::unique_ptr<::cleave::Material<3>>(new Class<3>(a));                             \
+      });                                                                                           \
+  }

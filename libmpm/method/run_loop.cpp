@@ -31,7 +31,7 @@ constexpr char kMagic[8] = {'C', 'L', 'V', 'E', 'C', 'K', 'P', '4'};
 
 struct LoopCounters {
   uint64_t scene_hash = 0;
-  int32_t next_frame = 0;  // index of the next frame of every series
+  int64_t next_frame = 0;  // index of the next frame of every series (64 bits: no padding in the file)
   double next_frame_time = 0.0, next_global_time = 0.0, next_tip_time = 0.0;
 };
 
@@ -113,7 +113,9 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
   std::optional<io::CsvSeries> tip_csv;
   if (tips) tip_csv.emplace(tips_path, tip_cols, opt.resume);
   auto status = [&](const char* s, const std::string& msg) {
-    io::write_run_status(out, s, msg, method.step_count(), method.time(), method.run_info());
+    nlohmann::json info = method.run_info();
+    info["method"] = method.name();
+    io::write_run_status(out, s, msg, method.step_count(), method.time(), info);
   };
   status("running", "");
 
@@ -121,7 +123,7 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
   RunSummary sum;
   auto write_frame = [&]() {
     for (std::size_t k = 0; k < series.size(); ++k) {
-      const std::string name = io::frame_file_name(series[k], ck.next_frame);
+      const std::string name = io::frame_file_name(series[k], static_cast<int>(ck.next_frame));
       io::write_vtu(out / name, method.frame(k));
       pvd[k].add(method.time(), name);
       pvd[k].write();

@@ -15,6 +15,7 @@
 #include "libmpm/mpm/loads.hpp"
 #include "libmpm/mpm/particles.hpp"
 #include "libmpm/shape/shape_function.hpp"
+#include "libmpm/shape/shape_registry.hpp"
 #include "libmpm/mpm/scheme.hpp"
 
 namespace cleave {

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "libmpm/io/crack_output.hpp"
-#include "libmpm/io/particle_fields.hpp"
+#include "libmpm/mpm/particle_output.hpp"
 #include "libmpm/mpm/mpm_method.hpp"
 #include "libmpm/mpm/mpm_scene.hpp"
 #include "libmpm/mpm/mpm_step.hpp"
@@ -115,7 +115,7 @@ class MpmMethod final : public Method<Dim> {
     return {"particles", "cracks"};
   }
   io::PointSet frame(std::size_t series) override {
-    if (series == 0) return io::particle_point_set<Dim>(m_, m_.output.fields);
+    if (series == 0) return particle_point_set<Dim>(m_, m_.output.fields);
     if (m_.crack_tips) return io::crack_point_set(m_.cracks, stepper_->crack_tip_parameters(*m_.crack_tips));
     return io::crack_point_set(m_.cracks);
   }

@@ -9,6 +9,7 @@
 #include "libmpm/geometry/shape.hpp"
 #include "libmpm/core/json_reader.hpp"
 #include "libmpm/core/units.hpp"
+#include "libmpm/scene/loads.hpp"
 #include "libmpm/scene/sections.hpp"
 
 namespace cleave {
@@ -167,13 +168,47 @@ static crack::TipSettings read_crack_tips(const json& scene, const Model<2>& m, 
   return s;
 }
 
+// A traction acts on the particle faces on its side that no particle of the same body covers
+// (boundary faces), inside its region (default: the whole grid), on its body (default: every body).
+template <int Dim>
+static TractionLoad<Dim> resolve_traction(const Model<Dim>& m, const std::vector<BodyLattice<Dim>>& lattices,
+                                          const scene::LoadSpec<Dim>& s) {
+  TractionLoad<Dim> t;
+  t.name = s.name;
+  t.traction = s.vector;
+  t.time_function.rise_time = s.rise_time;
+  t.side = s.side;
+  t.axis = s.axis;
+  const double h = m.grid.h;
+  const Vec<Dim> lo = s.has_region ? s.lo : m.grid.origin, hi = s.has_region ? s.hi : m.grid.upper();
+  for (std::size_t k = 0; k < m.bodies.size(); ++k) {
+    if (s.body >= 0 && static_cast<int>(k) != s.body) continue;
+    const auto& B = m.bodies[k];
+    const auto& lat = lattices[k];
+    for (std::size_t j = 0; j < B.count; ++j) {
+      const std::size_t p = B.first + j;
+      const auto& x = m.particles.x[p];
+      bool inside = true;
+      for (int d = 0; d < Dim; ++d) inside = inside && x[d] >= lo[d] - 1e-9 * h && x[d] <= hi[d] + 1e-9 * h;
+      if (!inside) continue;
+      LatticeKey<Dim> nb{lat.coord[j]};
+      nb.c[t.axis] += t.side;
+      if (lat.occupied.count(nb.hash())) continue;  // not a boundary face of the body
+      t.particles.push_back(static_cast<int32_t>(p));
+      t.face_area.push_back(m.particles.volume0[p] / (h / lat.n));
+    }
+  }
+  if (t.particles.empty())
+    throw SceneError(s.path, "no particle face on side " + s.face + " lies inside the region: nothing would be loaded");
+  return t;
+}
+
 template <int Dim>
 Model<Dim> build_model(const json& scene) {
   ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "grid", "mpm", "materials",
                                "bodies", "loads", "cracks", "crack_tips", "damping", "time", "output", "checks"});
   if (top.has("method") && top.string("method") != "mpm")  // peridynamics: libmpm/pd/pd_scene.cpp
     throw SceneError("method", "build_model reads MPM scenes only (\"method\": \"mpm\")");
-  register_builtin_materials();
   Model<Dim> m;
   const UnitSystem units = UnitSystem::from_json(scene.value("units", json()), "units");
   const double L = units.factor(Quantity::Length);
@@ -186,9 +221,10 @@ Model<Dim> build_model(const json& scene) {
   if (top.has("mpm")) {
     ObjectReader r(scene["mpm"], "mpm", {"shape_function", "stress_update"});
     const std::string sf = r.string_or("shape_function", "ugimp");
-    if (sf == "linear") m.shape_function = ShapeFunctionKind::Linear;
-    else if (sf == "ugimp") m.shape_function = ShapeFunctionKind::UGimp;
-    else throw SceneError("mpm.shape_function", "unknown shape function '" + sf + "'; valid: linear, ugimp");
+    const auto& styles = ShapeFunctions::instance();
+    const ShapeFunctionStyle* style = styles.find(sf);
+    if (!style) throw SceneError("mpm.shape_function", unknown_name("shape function", sf, styles.names_joined()));
+    m.shape_function = style->kind;
     const std::string su = r.string_or("stress_update", "USAVG");
     auto s = scheme_from_name(su);
     if (!s) throw SceneError("mpm.stress_update", "unknown scheme '" + su + "'; valid: USL, MUSL, USF, USAVG");
@@ -211,8 +247,7 @@ Model<Dim> build_model(const json& scene) {
     const std::string type = mats[i]["type"].get<std::string>();
     if (material_index.count(name)) throw SceneError(path + ".name", "duplicate material name '" + name + "'");
     auto& reg = MaterialRegistry<Dim>::instance();
-    if (!reg.has(type))
-      throw SceneError(path + ".type", "unknown material type '" + type + "'; valid: " + reg.names_joined());
+    if (!reg.has(type)) throw SceneError(path + ".type", reg.unknown("material type", type));
     m.materials.push_back(reg.create(type, MaterialArgs{mats[i], path, units, m.analysis}));
     material_index[name] = static_cast<int>(i);
   }
@@ -274,7 +309,7 @@ Model<Dim> build_model(const json& scene) {
 
   // --- particles --------------------------------------------------------------------------------
   std::vector<BodyLattice<Dim>> lattices(bodies.size());
-  const int K = m.shape_function == ShapeFunctionKind::UGimp ? 3 : 2;
+  const int K = shape_function_style(m.shape_function).K;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const std::string path = index_path("bodies", i);
     ObjectReader r(bodies[i], path,
@@ -373,8 +408,7 @@ Model<Dim> build_model(const json& scene) {
     }
   }
 
-  // --- loads ------------------------------------------------------------------------------------
-  const json& loads = array_at(scene, "loads", false);
+  // --- loads: read by scene/loads.hpp, resolved here on particle faces and grid nodes -----------
   std::map<int64_t, std::pair<uint8_t, Vec<Dim>>> conditions;
   const double h = m.grid.h;
   auto node_loop = [&](const Vec<Dim>& lo, const Vec<Dim>& hi, auto&& fn) {
@@ -393,91 +427,37 @@ Model<Dim> build_model(const json& scene) {
         }
     return count;
   };
-  auto read_region = [&](const ObjectReader& r, Vec<Dim>& lo, Vec<Dim>& hi) {  // the whole grid by default
-    lo = m.grid.origin;
-    hi = m.grid.upper();
-    if (r.has("region")) scene::read_region<Dim>(r, "region", L, lo, hi);
+  scene::LoadResolvers<Dim> resolvers;
+  resolvers["traction"] = [&](const scene::LoadSpec<Dim>& s) {
+    m.tractions.push_back(resolve_traction(m, lattices, s));
   };
-  for (std::size_t i = 0; i < loads.size(); ++i) {
-    const std::string path = index_path("loads", i);
-    if (!loads[i].is_object() || !loads[i].contains("type"))
-      throw SceneError(path + ".type", "missing (traction, body_force, velocity or symmetry)");
-    const std::string type = loads[i]["type"].is_string() ? loads[i]["type"].get<std::string>() : "";
-    if (type == "traction") {
-      ObjectReader r(loads[i], path, {"type", "name", "body", "region", "face", "traction", "rise_time"});
-      TractionLoad<Dim> t;
-      t.name = r.string_or("name", path);
-      t.traction = r.vec<Dim>("traction", units.factor(Quantity::Stress));
-      t.time_function.rise_time = r.has("rise_time") ? r.positive("rise_time", units.factor(Quantity::Time)) : 0.0;
-      const std::string face = r.string("face");
-      if (face.size() != 2 || (face[0] != '+' && face[0] != '-'))
-        throw SceneError(r.at("face"), "expected a face such as \"+y\" or \"-x\"");
-      t.side = face[0] == '+' ? 1 : -1;
-      t.axis = scene::axis_of<Dim>(face.substr(1), r.at("face"));
-      Vec<Dim> lo, hi;
-      read_region(r, lo, hi);
-      int body = -1;
-      if (r.has("body")) {
-        const std::string bn = r.string("body");
-        for (std::size_t k = 0; k < m.bodies.size(); ++k)
-          if (m.bodies[k].name == bn) body = static_cast<int>(k);
-        if (body < 0) throw SceneError(r.at("body"), "no body named '" + bn + "'");
-      }
-      for (std::size_t k = 0; k < m.bodies.size(); ++k) {
-        if (body >= 0 && static_cast<int>(k) != body) continue;
-        const auto& B = m.bodies[k];
-        const auto& lat = lattices[k];
-        for (std::size_t j = 0; j < B.count; ++j) {
-          const std::size_t p = B.first + j;
-          const auto& x = m.particles.x[p];
-          bool inside = true;
-          for (int d = 0; d < Dim; ++d) inside = inside && x[d] >= lo[d] - 1e-9 * h && x[d] <= hi[d] + 1e-9 * h;
-          if (!inside) continue;
-          LatticeKey<Dim> nb{lat.coord[j]};
-          nb.c[t.axis] += t.side;
-          if (lat.occupied.count(nb.hash())) continue;  // not a boundary face of the body
-          t.particles.push_back(static_cast<int32_t>(p));
-          t.face_area.push_back(m.particles.volume0[p] / (h / lat.n));
-        }
-      }
-      if (t.particles.empty())
-        throw SceneError(path, "no particle face on side " + face + " lies inside the region: nothing would be loaded");
-      m.tractions.push_back(std::move(t));
-    } else if (type == "body_force") {
-      ObjectReader r(loads[i], path, {"type", "acceleration"});
-      m.gravity += r.vec<Dim>("acceleration", units.factor(Quantity::Acceleration));
-    } else if (type == "velocity") {
-      ObjectReader r(loads[i], path, {"type", "region", "velocity"});
-      if (!r.has("region")) throw SceneError(r.at("region"), "missing: a velocity condition needs a region");
-      Vec<Dim> lo, hi;
-      read_region(r, lo, hi);
-      const auto [mask, v] = r.partial_vec<Dim>("velocity", units.factor(Quantity::Velocity));
-      const int count = node_loop(lo, hi, [&](int64_t n) {
-        auto& c = conditions[n];
-        c.first |= mask;
-        for (int d = 0; d < Dim; ++d)
-          if (mask & (1u << d)) c.second[d] = v[d];
-      });
-      if (!count) throw SceneError(r.at("region"), "no grid node lies inside the region");
-    } else if (type == "symmetry") {
-      ObjectReader r(loads[i], path, {"type", "axis", "position"});
-      const int axis = scene::axis_of<Dim>(r.string("axis"), r.at("axis"));
-      const double pos = r.number("position", L);
-      const double cells = (pos - m.grid.origin[axis]) / h;
-      if (std::fabs(cells - std::round(cells)) > 1e-6 || cells < 0 || cells > m.grid.nodes[axis] - 1)
-        throw SceneError(r.at("position"), "a symmetry plane must lie on a grid line inside the grid (grid lines "
-                                           "are at origin + k * cell_size)");
-      Vec<Dim> lo = m.grid.origin, hi = m.grid.upper();
-      lo[axis] = hi[axis] = m.grid.origin[axis] + std::round(cells) * h;
-      node_loop(lo, hi, [&](int64_t n) {
-        auto& c = conditions[n];
-        c.first |= uint8_t(1u << axis);
-        c.second[axis] = 0.0;
-      });
-    } else {
-      throw SceneError(path + ".type", "unknown load type '" + type + "'; valid: traction, body_force, velocity, symmetry");
-    }
-  }
+  resolvers["body_force"] = [&](const scene::LoadSpec<Dim>& s) { m.gravity += s.vector; };
+  resolvers["velocity"] = [&](const scene::LoadSpec<Dim>& s) {
+    const int count = node_loop(s.lo, s.hi, [&](int64_t n) {
+      auto& c = conditions[n];
+      c.first |= s.mask;
+      for (int d = 0; d < Dim; ++d)
+        if (s.mask & (1u << d)) c.second[d] = s.vector[d];
+    });
+    if (!count) throw SceneError(s.at("region"), "no grid node lies inside the region");
+  };
+  resolvers["symmetry"] = [&](const scene::LoadSpec<Dim>& s) {
+    const int axis = s.axis;
+    const double cells = (s.position - m.grid.origin[axis]) / h;
+    if (std::fabs(cells - std::round(cells)) > 1e-6 || cells < 0 || cells > m.grid.nodes[axis] - 1)
+      throw SceneError(s.at("position"), "a symmetry plane must lie on a grid line inside the grid (grid lines "
+                                         "are at origin + k * cell_size)");
+    Vec<Dim> lo = m.grid.origin, hi = m.grid.upper();
+    lo[axis] = hi[axis] = m.grid.origin[axis] + std::round(cells) * h;
+    node_loop(lo, hi, [&](int64_t n) {
+      auto& c = conditions[n];
+      c.first |= uint8_t(1u << axis);
+      c.second[axis] = 0.0;
+    });
+  };
+  std::vector<std::string> body_names;
+  for (const auto& b : m.bodies) body_names.push_back(b.name);
+  scene::read_loads<Dim>(scene, {units, body_names}, "mpm", resolvers);
   for (auto& [node, c] : conditions) {
     m.conditions.node.push_back(node);
     m.conditions.mask.push_back(c.first);

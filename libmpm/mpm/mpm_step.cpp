@@ -11,6 +11,7 @@
 #include "libmpm/mpm/crack_fields.hpp"
 #include "libmpm/mpm/crack_tip_eval.hpp"
 #include "libmpm/core/parallel.hpp"
+#include "libmpm/mpm/strip_order.hpp"
 #include "libmpm/mpm/stencil.hpp"
 #include "libmpm/mpm/step_timers.hpp"
 
@@ -503,13 +504,25 @@ class MpmStepper final : public Stepper<Dim> {
 
 }  // namespace
 
+namespace {
+
+// The stepper compiled for one shape-function style; each style registers it below.
+template <int Dim, class SF>
+std::unique_ptr<Stepper<Dim>> stepper_for(Model<Dim>& model) {
+  return std::make_unique<MpmStepper<Dim, SF>>(model);
+}
+
+}  // namespace
+
+CLEAVE_REGISTER_SHAPE_FUNCTION(LinearShape, stepper_for)
+CLEAVE_REGISTER_SHAPE_FUNCTION(UGimpShape, stepper_for)
+
+// The style is picked here, once per run; the hot loops are compiled for it.
 template <int Dim>
 std::unique_ptr<Stepper<Dim>> make_stepper(Model<Dim>& model) {
-  switch (model.shape_function) {
-    case ShapeFunctionKind::Linear: return std::make_unique<MpmStepper<Dim, LinearShape>>(model);
-    case ShapeFunctionKind::UGimp: return std::make_unique<MpmStepper<Dim, UGimpShape>>(model);
-  }
-  return nullptr;
+  const ShapeFunctionStyle& style = shape_function_style(model.shape_function);
+  if constexpr (Dim == 2) return style.stepper2(model);
+  else return style.stepper3(model);
 }
 
 template std::unique_ptr<Stepper<2>> make_stepper<2>(Model<2>&);

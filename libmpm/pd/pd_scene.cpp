@@ -7,11 +7,11 @@
 #include <map>
 #include <unordered_map>
 
-#include "libmpm/crack/crack2d.hpp"
 #include "libmpm/geometry/shape.hpp"
-#include "libmpm/pd/precrack.hpp"
+#include "libmpm/crack/surface.hpp"
 #include "libmpm/core/json_reader.hpp"
 #include "libmpm/core/units.hpp"
+#include "libmpm/scene/loads.hpp"
 #include "libmpm/scene/sections.hpp"
 
 namespace cleave::pd {
@@ -32,6 +32,44 @@ int64_t lattice_key(const std::array<int64_t, Dim>& q) {
   for (int d = 0; d < Dim; ++d) k = k * 4000037 + q[d];
   return k;
 }
+
+// Peridynamic material styles by scene "type": each reads its keys into the bond constants of the
+// lattice. An unknown type lists the registered ones.
+struct PdMaterialContext {
+  const UnitSystem& units;
+  PdModel model;
+  double delta, thickness;
+  std::vector<std::string>& warnings;
+};
+using PdMaterialReader = PdMaterial (*)(const json& j, const std::string& path, const PdMaterialContext& c);
+using PdMaterialStyles = NameTable<PdMaterialReader, PdMaterialContext>;
+
+// "linear_elastic": Young's modulus and density, plus the fracture energy that sets the critical
+// stretch. Bond-based peridynamics fixes nu (1/3 plane stress, 1/4 otherwise); E is matched, and in
+// 3D K = E / (3 (1 - 2 nu)) with that nu, so the lattice reproduces the scene's Young's modulus.
+PdMaterial read_linear_elastic(const json& j, const std::string& path, const PdMaterialContext& c) {
+  const ObjectReader r(j, path, {"name", "type", "E", "nu", "density", "fracture_energy"});
+  PdMaterial pm;
+  pm.E = r.positive("E", c.units.factor(Quantity::Stress));
+  pm.density = r.positive("density", c.units.factor(Quantity::Density));
+  if (!r.has("fracture_energy"))
+    throw SceneError(r.at("fracture_energy"), "missing: peridynamics needs the fracture energy G0 (critical stretch)");
+  pm.G0 = r.positive("fracture_energy", c.units.factor(Quantity::Stress) * c.units.factor(Quantity::Length));
+  const double nu_implied = c.model == PdModel::PlaneStress ? 1.0 / 3.0 : 0.25;
+  if (r.has("nu")) {
+    pm.nu_given = r.number("nu");
+    if (std::fabs(pm.nu_given - nu_implied) > 1e-6)
+      c.warnings.push_back(path + ".nu = " + std::to_string(pm.nu_given) +
+                           " is ignored: bond-based peridynamics implies nu = " + std::to_string(nu_implied) +
+                           " for this analysis (E is matched)");
+  }
+  const double modulus = c.model == PdModel::ThreeD ? pm.E / (3.0 * (1.0 - 2.0 * nu_implied)) : pm.E;
+  pm.k = pd_constants(c.model, modulus, pm.G0, c.delta, c.thickness);
+  return pm;
+}
+
+[[maybe_unused]] const bool linear_elastic_registered =
+    PdMaterialStyles::instance().add("linear_elastic", &read_linear_elastic);
 
 }  // namespace
 
@@ -101,38 +139,29 @@ PdSystem<Dim> build_pd_system(const json& scene) {
     }
   }
 
-  // --- materials: linear elastic constants plus the fracture energy ------------------------------
+  // --- materials: looked up by "type" among the peridynamic material styles ----------------------
   std::map<std::string, int> material_index;
   const json& mats = array_at(scene, "materials", true);
   if (mats.empty()) throw SceneError("materials", "at least one material is needed");
+  const PdMaterialContext mc{units, model, m.delta, m.thickness, m.warnings};
   for (std::size_t i = 0; i < mats.size(); ++i) {
     const std::string path = index_path("materials", i);
-    ObjectReader r(mats[i], path, {"name", "type", "E", "nu", "density", "fracture_energy"});
-    PdMaterial pm;
-    pm.name = r.string("name");
-    const std::string type = r.string("type");
-    if (type != "linear_elastic")
-      throw SceneError(r.at("type"), "unknown material type '" + type + "' for peridynamics; valid: linear_elastic");
-    if (material_index.count(pm.name)) throw SceneError(r.at("name"), "duplicate material name '" + pm.name + "'");
-    pm.E = r.positive("E", units.factor(Quantity::Stress));
-    pm.density = r.positive("density", units.factor(Quantity::Density));
-    if (!r.has("fracture_energy"))
-      throw SceneError(r.at("fracture_energy"), "missing: peridynamics needs the fracture energy G0 (critical stretch)");
-    pm.G0 = r.positive("fracture_energy", units.factor(Quantity::Stress) * L);
-    // Bond-based peridynamics fixes nu (1/3 plane stress, 1/4 otherwise); E is matched, and in 3D
-    // K = E / (3 (1 - 2 nu)) with that nu, so the lattice reproduces the scene's Young's modulus.
-    const double nu_implied = model == PdModel::PlaneStress ? 1.0 / 3.0 : 0.25;
-    if (r.has("nu")) {
-      pm.nu_given = r.number("nu");
-      if (std::fabs(pm.nu_given - nu_implied) > 1e-6)
-        m.warnings.push_back(path + ".nu = " + std::to_string(pm.nu_given) +
-                             " is ignored: bond-based peridynamics implies nu = " + std::to_string(nu_implied) +
-                             " for this analysis (E is matched)");
+    if (!mats[i].is_object()) throw SceneError(path, "expected an object");
+    for (const char* key : {"name", "type"}) {
+      if (!mats[i].contains(key) || mats[i][key].is_null()) throw SceneError(path + "." + key, "missing");
+      if (!mats[i][key].is_string()) throw SceneError(path + "." + key, "expected a string");
     }
-    const double modulus = model == PdModel::ThreeD ? pm.E / (3.0 * (1.0 - 2.0 * nu_implied)) : pm.E;
-    pm.k = pd_constants(model, modulus, pm.G0, m.delta, m.thickness);
-    material_index[pm.name] = static_cast<int>(i);
-    m.materials.push_back(pm);
+    // Each style checks its own keys.
+    const std::string name = mats[i]["name"].get<std::string>(), type = mats[i]["type"].get<std::string>();
+    const auto& styles = PdMaterialStyles::instance();
+    const PdMaterialReader* read = styles.find(type);
+    if (!read)
+      throw SceneError(path + ".type", "unknown material type '" + type + "' for peridynamics; valid: " +
+                                           styles.names_joined());
+    if (material_index.count(name)) throw SceneError(path + ".name", "duplicate material name '" + name + "'");
+    m.materials.push_back((*read)(mats[i], path, mc));
+    m.materials.back().name = name;
+    material_index[name] = static_cast<int>(i);
   }
 
   // --- bodies on one lattice: points at (k + 1/2) dx ---------------------------------------------
@@ -210,71 +239,42 @@ PdSystem<Dim> build_pd_system(const json& scene) {
     for (const auto& [lo, hi] : no_fail)
       if (in_box<Dim>(P.x0[p], lo, hi, tol)) P.no_fail[p] = 1;
 
-  // --- loads ----------------------------------------------------------------------------------
-  const json& loads = array_at(scene, "loads", false);
-  for (std::size_t i = 0; i < loads.size(); ++i) {
-    const std::string path = index_path("loads", i);
-    if (!loads[i].is_object() || !loads[i].contains("type"))
-      throw SceneError(path + ".type", "missing (traction, body_force or velocity)");
-    const std::string type = loads[i]["type"].is_string() ? loads[i]["type"].get<std::string>() : "";
-    if (type == "traction") {
-      ObjectReader r(loads[i], path, {"type", "name", "body", "region", "face", "traction", "rise_time"});
-      PdLoad<Dim> ld;
-      ld.name = r.string_or("name", path);
-      ld.force_density = r.vec<Dim>("traction", units.factor(Quantity::Stress)) / m.dx;
-      ld.rise_time = r.has("rise_time") ? r.positive("rise_time", units.factor(Quantity::Time)) : 0.0;
-      const std::string face = r.string("face");
-      if (face.size() != 2 || (face[0] != '+' && face[0] != '-'))
-        throw SceneError(r.at("face"), "expected a face such as \"+y\" or \"-x\"");
-      const int side = face[0] == '+' ? 1 : -1;
-      const int axis = scene::axis_of<Dim>(face.substr(1), r.at("face"));
-      bool region = r.has("region");
-      Vec<Dim> lo, hi;
-      if (region) read_region<Dim>(r, "region", L, lo, hi);
-      int body = -1;
-      if (r.has("body")) {
-        const std::string bn = r.string("body");
-        for (std::size_t k = 0; k < m.bodies.size(); ++k)
-          if (m.bodies[k] == bn) body = static_cast<int>(k);
-        if (body < 0) throw SceneError(r.at("body"), "no body named '" + bn + "'");
-      }
-      for (std::size_t p = 0; p < P.size(); ++p) {
-        if (body >= 0 && P.body[p] != body) continue;
-        if (region && !in_box<Dim>(P.x0[p], lo, hi, tol)) continue;
-        auto nq = coord[p];
-        nq[axis] += side;
-        auto it = occupied.find(lattice_key<Dim>(nq));
-        if (it != occupied.end() && P.body[it->second] == P.body[p]) continue;  // not on the body's face
-        ld.points.push_back(static_cast<int32_t>(p));
-      }
-      if (ld.points.empty())
-        throw SceneError(path, "no point on side " + face + " lies inside the region: nothing would be loaded");
-      m.loads.push_back(std::move(ld));
-    } else if (type == "body_force") {
-      ObjectReader r(loads[i], path, {"type", "acceleration"});
-      m.gravity += r.vec<Dim>("acceleration", units.factor(Quantity::Acceleration));
-    } else if (type == "velocity") {
-      ObjectReader r(loads[i], path, {"type", "region", "velocity"});
-      if (!r.has("region")) throw SceneError(r.at("region"), "missing: a velocity condition needs a region");
-      Vec<Dim> lo, hi;
-      read_region<Dim>(r, "region", L, lo, hi);
-      const auto [mask, v] = r.partial_vec<Dim>("velocity", units.factor(Quantity::Velocity));
-      int count = 0;
-      for (std::size_t p = 0; p < P.size(); ++p) {
-        if (!in_box<Dim>(P.x0[p], lo, hi, tol)) continue;
-        ++count;
-        P.fixed[p] |= mask;
-        for (int d = 0; d < Dim; ++d)
-          if (mask & (1u << d)) P.v_fixed[p][d] = v[d], P.v[p][d] = v[d];
-      }
-      if (!count) throw SceneError(r.at("region"), "no lattice point lies inside the region");
-    } else if (type == "symmetry") {
-      throw SceneError(path + ".type", "symmetry is not available with peridynamics (lattice points do not lie on "
-                                       "the plane); model the whole specimen or use a velocity condition");
-    } else {
-      throw SceneError(path + ".type", "unknown load type '" + type + "'; valid: traction, body_force, velocity");
+  // --- loads: read by scene/loads.hpp, resolved here on lattice points ---------------------------
+  scene::LoadResolvers<Dim> resolvers;
+  resolvers["traction"] = [&](const scene::LoadSpec<Dim>& s) {
+    PdLoad<Dim> ld;
+    ld.name = s.name;
+    ld.force_density = s.vector / m.dx;  // the traction spread over one lattice layer
+    ld.rise_time = s.rise_time;
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      if (s.body >= 0 && P.body[p] != s.body) continue;
+      if (s.has_region && !in_box<Dim>(P.x0[p], s.lo, s.hi, tol)) continue;
+      auto nq = coord[p];
+      nq[s.axis] += s.side;
+      auto it = occupied.find(lattice_key<Dim>(nq));
+      if (it != occupied.end() && P.body[it->second] == P.body[p]) continue;  // not on the body's face
+      ld.points.push_back(static_cast<int32_t>(p));
     }
-  }
+    if (ld.points.empty())
+      throw SceneError(s.path, "no point on side " + s.face + " lies inside the region: nothing would be loaded");
+    m.loads.push_back(std::move(ld));
+  };
+  resolvers["body_force"] = [&](const scene::LoadSpec<Dim>& s) { m.gravity += s.vector; };
+  resolvers["velocity"] = [&](const scene::LoadSpec<Dim>& s) {
+    int count = 0;
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      if (!in_box<Dim>(P.x0[p], s.lo, s.hi, tol)) continue;
+      ++count;
+      P.fixed[p] |= s.mask;
+      for (int d = 0; d < Dim; ++d)
+        if (s.mask & (1u << d)) P.v_fixed[p][d] = s.vector[d], P.v[p][d] = s.vector[d];
+    }
+    if (!count) throw SceneError(s.at("region"), "no lattice point lies inside the region");
+  };
+  const std::map<std::string, std::string> refused = {
+      {"symmetry", "symmetry is not available with peridynamics (lattice points do not lie on the plane); model "
+                   "the whole specimen or use a velocity condition"}};
+  scene::read_loads<Dim>(scene, {units, m.bodies}, "peridynamics", resolvers, refused);
 
   // --- bonds: same body only, minus those crossing a pre-crack -----------------------------------
   BondList<Dim> bl = build_bonds<Dim>(P.x0, m.dx, m.delta);
@@ -282,46 +282,12 @@ PdSystem<Dim> build_pd_system(const json& scene) {
   for (std::size_t k = 0; k < bl.size(); ++k)
     if (P.body[bl.i[k]] != P.body[bl.j[k]]) keep[k] = 0;
   if (top.has("cracks")) {
-    if constexpr (Dim == 2) {
-      const auto cracks = crack::parse_cracks(scene["cracks"], "cracks", L);
-      for (const auto& c : cracks) {
-        std::size_t cut = 0;
-        for (std::size_t k = 0; k < bl.size(); ++k) {
-          if (!keep[k]) continue;
-          const Vec<2>& a = P.x0[bl.i[k]];
-          const Vec<2>& b = P.x0[bl.j[k]];
-          if (std::max(a.x(), b.x()) < c.lo.x() || std::min(a.x(), b.x()) > c.hi.x() ||
-              std::max(a.y(), b.y()) < c.lo.y() || std::min(a.y(), b.y()) > c.hi.y())
-            continue;
-          for (std::size_t s = 0; s + 1 < c.points.size(); ++s)
-            if (crack::segments_intersect(a, b, c.points[s], c.points[s + 1])) {
-              keep[k] = 0;
-              ++cut;
-              break;
-            }
-        }
-        if (!cut) m.warnings.push_back("crack '" + c.name + "' cuts no bond (it lies outside every body)");
-        m.precrack_bonds += cut;
-      }
-    } else {
-      const auto cracks = parse_cracks3d(scene["cracks"], "cracks", L);
-      for (const auto& c : cracks) {
-        std::size_t cut = 0;
-        for (std::size_t k = 0; k < bl.size(); ++k) {
-          if (!keep[k]) continue;
-          const Vec<3>& a = P.x0[bl.i[k]];
-          const Vec<3>& b = P.x0[bl.j[k]];
-          if ((a.cwiseMax(b).array() < c.lo.array()).any() || (a.cwiseMin(b).array() > c.hi.array()).any()) continue;
-          for (const auto& T : c.triangles)
-            if (segment_hits_triangle(a, b, T[0], T[1], T[2])) {
-              keep[k] = 0;
-              ++cut;
-              break;
-            }
-        }
-        if (!cut) m.warnings.push_back("crack '" + c.name + "' cuts no bond (it lies outside every body)");
-        m.precrack_bonds += cut;
-      }
+    for (const auto& c : crack::read_surfaces<Dim>(scene["cracks"], "cracks", L)) {
+      std::size_t cut = 0;
+      for (std::size_t k = 0; k < bl.size(); ++k)
+        if (keep[k] && crack::segment_crosses<Dim>(c, P.x0[bl.i[k]], P.x0[bl.j[k]])) keep[k] = 0, ++cut;
+      if (!cut) m.warnings.push_back("crack '" + c.name + "' cuts no bond (it lies outside every body)");
+      m.precrack_bonds += cut;
     }
   }
   // Directed neighbour lists (pd_model.hpp): count, then fill in (i, j) order.

@@ -9,10 +9,15 @@
 
 namespace cleave {
 
+// The style a model uses (Model::shape_function); styles are registered by name
+// (shape_registry.hpp), each with the stepper compiled for it.
+enum class ShapeFunctionKind { Linear, UGimp };
+
 // Linear (bilinear/trilinear) hat functions: 2 nodes per axis.
 struct LinearShape {
   static constexpr int K = 2;
   static constexpr const char* name = "linear";
+  static constexpr ShapeFunctionKind kind = ShapeFunctionKind::Linear;
   // xi: particle coordinate in cells from the grid origin; l: particle half-width in cells (unused).
   CLEAVE_INLINE static inline int eval(double xi, double /*l*/, double* w, double* dw) {
     const double fl = static_cast<double>(static_cast<int>(xi));  // xi > 0 inside the grid
@@ -32,6 +37,7 @@ struct LinearShape {
 struct UGimpShape {
   static constexpr int K = 3;
   static constexpr const char* name = "ugimp";
+  static constexpr ShapeFunctionKind kind = ShapeFunctionKind::UGimp;
   // H(s) = integral of max(0, 1 - |t|) from -inf to s.
   static inline double hat_integral(double s) {
     const double c = std::min(1.0, std::max(-1.0, s));
@@ -69,8 +75,6 @@ struct UGimpShape {
     return base;
   }
 };
-
-enum class ShapeFunctionKind { Linear, UGimp };
 
 // True when every node of a particle at xi (cells from the grid origin) exists on an axis of `nodes`
 // nodes, for a style of stencil width K: linear nodes [floor(xi), +1], uGIMP [floor(xi + 1/2) - 1, +2].

@@ -1,6 +1,6 @@
-// Pre-cracks for peridynamics: every bond whose reference segment touches a crack is removed
-// before the run. 2D cracks are the scene's polylines (crack/crack2d.hpp, parse_cracks); 3D cracks
-// are triangle surfaces declared as below (docs/scenes.md, "Peridynamics").
+// 3D crack surfaces as the scene declares them (docs/scenes.md, "Peridynamics": triangles or a
+// quad), and the segment-against-triangle test. crack/surface.hpp turns them into the
+// dimension-free Surface<3> that every method reads.
 #pragma once
 #include <array>
 #include <string>
@@ -10,7 +10,7 @@
 
 #include "libmpm/core/types.hpp"
 
-namespace cleave::pd {
+namespace cleave::crack {
 
 struct Crack3D {
   std::string name;
@@ -34,4 +34,4 @@ std::vector<Crack3D> parse_cracks3d(const nlohmann::json& cracks, const std::str
 bool segment_hits_triangle(const Vec<3>& p, const Vec<3>& q, const Vec<3>& a, const Vec<3>& b,
                            const Vec<3>& c);
 
-}  // namespace cleave::pd
+}  // namespace cleave::crack

@@ -1,4 +1,4 @@
-#include "libmpm/pd/precrack.hpp"
+#include "libmpm/crack/surface3d.hpp"
 
 #include <cmath>
 #include <set>
@@ -10,7 +10,7 @@
 #include "libmpm/core/error.hpp"
 #include "libmpm/core/json_reader.hpp"
 
-namespace cleave::pd {
+namespace cleave::crack {
 namespace {
 
 // Sign of the volume of tetrahedron (a, b, c, d): positive when d lies on the side of the
@@ -82,4 +82,4 @@ std::vector<Crack3D> parse_cracks3d(const nlohmann::json& cracks, const std::str
   return out;
 }
 
-}  // namespace cleave::pd
+}  // namespace cleave::crack

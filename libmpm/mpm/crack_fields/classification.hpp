@@ -1,0 +1,224 @@
+// Layer of the crack fields (libmpm/mpm/crack_fields.hpp; layering: grid_cells.hpp): which side of
+// which crack each particle-node pair lies on (seed 002 Appendix A, line crossing), for the
+// particles near a crack: their list, their stencils, and per pair a field key (the cracks its
+// connecting line crosses and the particle's side of each, at most two) with the segment crossed.
+// Only the near particles are classified: the spatial index guarantees that every other particle's
+// lines cross nothing.
+// 2D only: the crossing test is that of crack::Crack2D polylines (crack/crossing.hpp).
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "libmpm/core/parallel.hpp"
+#include "libmpm/crack/crack2d.hpp"
+#include "libmpm/mpm/crack_fields/spatial_index.hpp"
+#include "libmpm/mpm/model.hpp"
+#include "libmpm/mpm/stencil.hpp"
+
+namespace cleave::crack_fields {
+
+template <int Dim, class SF>
+class Classification : public SpatialIndex<Dim, SF> {
+  static_assert(Dim == 2, "crack fields: 2D only (line crossing of crack::Crack2D polylines)");
+  using Base = SpatialIndex<Dim, SF>;
+  using St = Stencil<Dim, SF>;
+  using V = Vec<Dim>;
+
+ public:
+  static constexpr int N = St::N;
+
+  // One flag per particle: near a crack at the start of the step (set by the stepper's strip-order
+  // pass with near_test(), between prepare_index() and prepare_fields()).
+  const uint8_t* near_flags() const { return near_flag_.data(); }
+  uint8_t* near_flags() { return near_flag_.data(); }
+  const std::vector<int32_t>& near_list() const { return near_; }
+  // Per particle: its index in near_list(), or -1 when it is not near a crack.
+  const int32_t* near_index() const { return near_index_.data(); }
+  // The stencil of near particle k (index into near_list()), evaluated once in prepare_fields(): every pass
+  // of a step evaluates the shape functions at the start-of-step positions (a pass that moves the
+  // particles does so after its last use of them), so one evaluation serves the whole step.
+  const St& stencil(std::size_t k) const { return near_st_[k]; }
+
+ protected:
+  using typename Base::Entry;
+  using Base::cell_head_;
+  using Base::cell_of;
+  using Base::cracks_;
+  using Base::entries_;
+  using Base::G_;
+  using Base::inv_h_;
+  using Base::node_position;
+  using Base::stride_;
+  static constexpr uint32_t kOverflow = crack::kFieldKeyOverflow;  // a line crossing three or more cracks
+
+  explicit Classification(Model<Dim>& m) : Base(m), P_(m.particles) {
+    near_flag_.assign(P_.size(), 0);
+    near_index_.assign(P_.size(), -1);
+  }
+
+  // The list of near particles, in particle order, from the flags (only when a flag changed): in
+  // parallel over fixed chunks, each filled at the offset of a prefix sum of the chunk counts.
+  void collect_near_particles() {
+    for (int32_t p : near_) near_index_[p] = -1;
+    const std::size_t np = P_.size();
+    constexpr std::size_t kChunk = 8192;
+    const std::size_t chunks = (np + kChunk - 1) / kChunk;
+    chunk_begin_.assign(chunks + 1, 0);
+    const bool par = worth_parallel(np);
+#pragma omp parallel for schedule(static) if (par)
+    for (std::size_t c = 0; c < chunks; ++c) {
+      std::size_t count = 0;
+      const std::size_t end = std::min(np, (c + 1) * kChunk);
+      for (std::size_t p = c * kChunk; p < end; ++p) count += near_flag_[p];
+      chunk_begin_[c + 1] = count;
+    }
+    for (std::size_t c = 0; c < chunks; ++c) chunk_begin_[c + 1] += chunk_begin_[c];
+    near_.resize(chunk_begin_[chunks]);
+#pragma omp parallel for schedule(static) if (par)
+    for (std::size_t c = 0; c < chunks; ++c) {
+      if (chunk_begin_[c + 1] == chunk_begin_[c]) continue;
+      std::size_t k = chunk_begin_[c];
+      const std::size_t end = std::min(np, (c + 1) * kChunk);
+      for (std::size_t p = c * kChunk; p < end; ++p)
+        if (near_flag_[p]) {
+          near_index_[p] = static_cast<int32_t>(k);
+          near_[k++] = static_cast<int32_t>(p);
+        }
+    }
+  }
+
+  // Field key of the line particle xp -> node xn: one code per crossed crack,
+  // code = 2 crack + (below ? 1 : 0) + 1, two codes packed in ascending order (low 16 bits first).
+  // seg receives the crossed segment of each code (same order). Key 0: no crossing.
+  uint32_t classify(const V& xp, const V& xn, int32_t seg[2]) const {
+    const int64_t cell = cell_of(xp);
+    if (cell < 0) return 0;
+    return classify_in_cell(cell, xp, xn, seg);
+  }
+  // The same for a particle known to lie in `cell` (>= 0).
+  uint32_t classify_in_cell(int64_t cell, const V& xp, const V& xn, int32_t seg[2]) const {
+    crack::FieldKeyBuilder b;
+    for (int32_t e = cell_head_[cell]; e >= 0; e = entries_[e].next) {
+      const Entry& en = entries_[e];
+      if (!add_crossing(b, en.crack, en.seg_lo, en.seg_hi, xp, xn)) return kOverflow;
+    }
+    return b.key(seg);
+  }
+
+  // Adds to b the crossing of the line xp -> xn with segments lo..hi of crack `crack`, if any;
+  // false when that is a third crossed crack (the key overflows).
+  bool add_crossing(crack::FieldKeyBuilder& b, int32_t crack, int32_t lo, int32_t hi, const V& xp, const V& xn) const {
+    const crack::Crack2D& c = cracks_[crack];
+    if (!crack::extent_overlaps(c, xp, xn)) return true;  // Subtask 1
+    std::size_t s = 0;
+    const crack::Side side =
+        crack::polyline_crossing(c.points.data() + lo, static_cast<std::size_t>(hi - lo + 2), xp, xn, &s);
+    return side == crack::Side::None || b.add(crack, side, lo + static_cast<int32_t>(s));
+  }
+
+  // An index entry narrowed for one particle: segments lo..hi of the crack (none when lo > hi).
+  struct SubRange {
+    int32_t crack, lo, hi;
+  };
+  static constexpr int kMaxSub = 8;  // entries per cell narrowed; a cell with more uses its full ranges
+
+  // classify_in_cell on narrowed ranges (same answers, see classify_pairs).
+  uint32_t classify_sub(const SubRange* sub, int nsub, const V& xp, const V& xn, int32_t seg[2]) const {
+    crack::FieldKeyBuilder b;
+    for (int e = 0; e < nsub; ++e) {
+      const SubRange& sr = sub[e];
+      if (sr.lo <= sr.hi && !add_crossing(b, sr.crack, sr.lo, sr.hi, xp, xn)) return kOverflow;
+    }
+    return b.key(seg);
+  }
+
+  // Keys of every pair of every near particle. Per particle, each index entry of its cell is first
+  // narrowed to the segments whose bounding box touches the closed box B spanned by the particle and
+  // its stencil nodes (an entry covers every segment within kReach cells of the cell, ~2 kReach + 2
+  // segments; B meets ~3). Exact: a segment apart from B cannot touch any particle-node line of the
+  // particle, nor can the end vertices that the narrowed range shares with such segments, so
+  // polyline_crossing's rules (crossing.hpp: a contact only at a vertex on the line, a range end
+  // treated as a tip) give the same side and segment on the narrowed range as on the entry's.
+  void classify_pairs() {
+    const std::size_t nn = near_.size();
+    pair_key_.resize(nn * N);
+    pair_seg_.resize(nn * N * 2);
+    near_st_.resize(nn);
+    key_any_.resize(nn);
+#pragma omp parallel for schedule(static) if (nn >= 512)
+    for (std::size_t k = 0; k < nn; ++k) {
+      const std::size_t p = static_cast<std::size_t>(near_[k]);
+      const V xp = P_.x[p];
+      St& s = near_st_[k];
+      s.eval(G_, stride_, inv_h_, xp, P_.half_width[p]);
+      // The particle's cell and its first node's grid indices once (node_position's division per
+      // node was a large share of this loop); node j of the stencil is (i0 + j / K, j0 + j % K).
+      const int64_t cell = cell_of(xp);  // >= 0: a near particle's cell has index entries
+      const int64_t i0 = s.base / static_cast<int64_t>(stride_[0]), j0 = s.base % static_cast<int64_t>(stride_[0]);
+      // Node coordinates computed once: the box B must hold exactly the values classified.
+      double nx[St::K], ny[St::K];
+      for (int a = 0; a < St::K; ++a) {
+        const V xa = node_position(i0 + a, j0 + a);
+        nx[a] = xa.x(), ny[a] = xa.y();
+      }
+      double lo[2] = {xp.x(), xp.y()}, hi[2] = {xp.x(), xp.y()};
+      for (int a = 0; a < St::K; ++a) {
+        lo[0] = std::min(lo[0], nx[a]), hi[0] = std::max(hi[0], nx[a]);
+        lo[1] = std::min(lo[1], ny[a]), hi[1] = std::max(hi[1], ny[a]);
+      }
+      auto meets = [&](const V& a, const V& b) {  // the closed box [min(a, b), max(a, b)] meets B
+        return std::max(a.x(), b.x()) >= lo[0] && std::min(a.x(), b.x()) <= hi[0] &&
+               std::max(a.y(), b.y()) >= lo[1] && std::min(a.y(), b.y()) <= hi[1];
+      };
+      SubRange sub[kMaxSub];
+      int nsub = 0;
+      bool any = false;
+      for (int32_t e = cell_head_[cell]; e >= 0; e = entries_[e].next) {
+        if (nsub == kMaxSub) {
+          nsub = -1;
+          any = true;
+          break;
+        }
+        const Entry& en = entries_[e];
+        int32_t a = en.seg_lo, b = en.seg_hi;
+        if (!meets(en.lo, en.hi)) {
+          a = b + 1;  // no segment of the entry comes near B
+        } else {
+          const auto& pts = cracks_[en.crack].points;
+          while (a <= b && !meets(pts[a], pts[a + 1])) ++a;
+          while (b >= a && !meets(pts[b], pts[b + 1])) --b;
+        }
+        any = any || a <= b;
+        sub[nsub++] = {en.crack, a, b};
+      }
+      key_any_[k] = any;
+      if (!any) {  // every key 0
+        std::fill_n(&pair_key_[k * N], N, 0u);
+        continue;
+      }
+      int j = 0;
+      s.for_each_weight([&](int64_t, double w) {
+        const std::size_t q = k * N + j;
+        const V xn(nx[j / St::K], ny[j % St::K]);
+        ++j;
+        pair_key_[q] = 0;
+        if (w == 0.0) return;  // no contribution: no field needed
+        pair_key_[q] = nsub >= 0 ? classify_sub(sub, nsub, xp, xn, &pair_seg_[2 * q])
+                                 : classify_in_cell(cell, xp, xn, &pair_seg_[2 * q]);
+      });
+    }
+  }
+
+  Particles<Dim>& P_;
+  std::vector<uint8_t> near_flag_;
+  std::vector<int32_t> near_;
+  std::vector<int32_t> near_index_;  // per particle: index in near_, or -1
+  std::vector<std::size_t> chunk_begin_;
+  std::vector<St> near_st_;
+  std::vector<uint8_t> key_any_;  // per near particle: does a key differ from 0 (set by classify_pairs)
+  std::vector<uint32_t> pair_key_;
+  std::vector<int32_t> pair_seg_;
+};
+
+}  // namespace cleave::crack_fields

@@ -1,0 +1,200 @@
+// Top layer of the crack fields (libmpm/mpm/crack_fields.hpp; layering: grid_cells.hpp): crack
+// contact (seed 002 §2.2; seed 000 Appendix B) at every multi-field node, between each pair of
+// fields whose keys differ in exactly one crack: detection (the crack's nodal-volume or
+// nodal-displacement indicator, overridden where the tracked surfaces close), then the crack's law
+// (stick, frictionless or Coulomb friction) as a momentum exchange between the two fields.
+// 2D only: the nodal volume is compared with a cell's area, and the tracked surfaces are those of
+// crack::Crack2D polylines.
+#pragma once
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "libmpm/crack/crack2d.hpp"
+#include "libmpm/mpm/crack_fields/crack_motion.hpp"
+#include "libmpm/mpm/model.hpp"
+
+namespace cleave::crack_fields {
+
+template <int Dim, class SF>
+class CrackContact : public CrackMotion<Dim, SF> {
+  static_assert(Dim == 2, "crack fields: 2D only (cell area, crack::Crack2D surfaces)");
+  using Base = CrackMotion<Dim, SF>;
+  using V = Vec<Dim>;
+
+ public:
+  // Contact at every multi-field node, between each pair of fields whose keys differ in exactly one
+  // crack. With back_compute (Task 4) the momentum changes are also added to the forces as Δp/dt so
+  // that Task 5 moves the particles consistently.
+  // Every multi-field node on its own (it changes only its own fields' momenta and forces): in
+  // parallel from kParallelPoints nodes.
+  void contact(double dt, bool back_compute = false) {
+    const double cell_volume = G_.h * G_.h;
+    flag_closing_surfaces(dt);
+    const std::size_t nb = block_node_.size();
+#pragma omp parallel for schedule(static) if (parallel_points(nb))
+    for (std::size_t b = 0; b < nb; ++b) {
+      const int64_t n = block_node_[b];
+      const int nf = 1 + block_nslots_[b];
+      for (int i = 0; i < nf; ++i)
+        for (int j = i + 1; j < nf; ++j) {
+          const int32_t xi = i == 0 ? -1 : static_cast<int32_t>(b * kExtra + i - 1);
+          const int32_t xj = static_cast<int32_t>(b * kExtra + j - 1);
+          const uint32_t ki = i == 0 ? 0u : block_key_[xi], kj = block_key_[xj];
+          int crack, rank_i, rank_j;
+          if (!differ_in_one_crack(ki, kj, crack, rank_i, rank_j)) continue;
+          const int32_t xa = rank_i > rank_j ? xi : xj, xb = rank_i > rank_j ? xj : xi;
+          const double ma = mass(n, xa), mb = mass(n, xb);
+          if (!(ma > 0.0 && mb > 0.0)) continue;
+          V nrm = normal_sum(xi, crack) + normal_sum(xj, crack);
+          const double len = nrm.norm();
+          if (!(len > 0.0)) continue;
+          nrm /= len;  // from above to below
+          const crack::Crack2D& c = cracks_[crack];
+          const Law law = c.contact_law;
+          if (law == Law::None) continue;
+          V& pa = momentum(n, xa);
+          V& pb = momentum(n, xb);
+          const V dv = pa / ma - pb / mb;
+          const double approach = dv.dot(nrm);  // > 0: the faces move towards each other
+          bool touching;
+          if (c.detection == crack::Crack2D::Detection::Volume) {
+            // Eq. 10. An opening g takes about g h (1 - d/h) from the volume of a node at distance d
+            // from the crack, so approaching faces count as touching while g <= (1 - v_sep) h / (1 - d/h):
+            // the gap at which they stop depends on where the crack lies among the nodes (0.1 cell on
+            // a node row, 0.2 cell half a cell off; docs/validation.md, 2D cracks item 4).
+            const double vrel = volume_[b] / cell_volume;
+            touching = vrel > c.v_contact || (vrel >= c.v_sep && approach > 0.0);
+          } else {
+            // Seed 000 eqs. 69-70, with the displacements predicted to the end of the step
+            // (u + dt v): testing the start-of-step overlap alone lets the faces pass each other
+            // by up to one step's approach (dt |dv.n|) before contact acts.
+            const V ua = (xa < 0 ? disp0_[b] : disp_[xa]) / ma, ub = (xb < 0 ? disp0_[b] : disp_[xb]) / mb;
+            touching = approach > 0.0 && (ua - ub + dt * dv).dot(nrm) > 0.0;
+          }
+          // The node carries a crack point whose faces touch or would cross within the step
+          // (flag_closing_surfaces): contact, whatever the node-averaged indicator says.
+          if (!touching && approach > 0.0 && closing_[b * cracks_.size() + crack]) touching = true;
+          if (!touching) continue;
+          // Stick: both fields take the centre-of-mass velocity (eq. 13).
+          const V stick = (ma * pb - mb * pa) / (ma + mb);
+          V dp;
+          if (law == Law::Stick) {
+            dp = stick;
+          } else {
+            const double dpn = stick.dot(nrm);
+            dp = dpn * nrm;
+            if (law == Law::Friction) {
+              // Coulomb: the tangential change needed to stick, capped at mu |normal change|
+              // (eqs. 14-18 in momentum form).
+              const V dpt = stick - dp;
+              const double t = dpt.norm(), cap = c.friction * std::fabs(dpn);
+              dp += t <= cap ? dpt : dpt * (cap / t);
+            }
+          }
+          pa += dp;
+          pb -= dp;
+          if (back_compute) {
+            force(n, xa) += dp / dt;
+            force(n, xb) -= dp / dt;
+          }
+        }
+    }
+  }
+
+ protected:
+  using typename Base::SideFields;
+  using Base::block_key_;
+  using Base::block_node_;
+  using Base::block_nslots_;
+  using Base::cm_velocity;
+  using Base::cracks_;
+  using Base::disp0_;
+  using Base::disp_;
+  using Base::force;
+  using Base::G_;
+  using Base::is_tip;
+  using Base::kExtra;
+  using Base::left_normal;
+  using Base::linear_nodes;
+  using Base::mass;
+  using Base::momentum;
+  using Base::node_block_;
+  using Base::normal_sum;
+  using Base::parallel_points;
+  using Base::side_fields;
+  using Base::side_velocity;
+  using Base::volume_;
+  using Law = crack::Crack2D::ContactLaw;
+
+  CrackContact(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin) : Base(m, grid, kin) {}
+
+  // Contact detection from the tracked crack surfaces. Both node-based indicators (seed 002's
+  // relative nodal volume, seed 000's mass-weighted nodal displacements) average the opening over a
+  // node's support, 2-3 cells of crack: where the opening varies on the cell scale (near a tip,
+  // closing after a wide opening) a node reads "apart" (V_rel < v_sep, or a positive mean
+  // displacement gap) while the faces beside it already touch, and they cross there (-12 % to -16 %
+  // of a cell in the colliding-disk scene, docs/validation.md). The tracked surfaces give the local
+  // opening: a crack point whose normal opening, predicted to the end of the step with the side
+  // velocities it moves with (move_cracks), is <= 0 flags the nodes that move its two surfaces, and
+  // contact() treats approaching fields at those nodes as touching.
+  void flag_closing_surfaces(double dt) {
+    const std::size_t nc = cracks_.size();
+    closing_.assign(block_node_.size() * nc, 0);
+    for (std::size_t ci = 0; ci < nc; ++ci) {
+      const crack::Crack2D& c = cracks_[ci];
+      if (c.contact_law == Law::None) continue;
+      const std::vector<SideFields>& sides = side_fields(ci);
+      const std::size_t np = c.points.size();
+#pragma omp parallel for schedule(static) if (parallel_points(np))
+      for (std::size_t i = 0; i < np; ++i) {
+        if (is_tip(c, i)) continue;  // its faces meet by definition (move_cracks): no gap to close
+        const V nl = left_normal(c, i);
+        const V vcm = cm_velocity(c.points[i]);
+        const V va = side_velocity(sides[2 * i], vcm);
+        const V vb = side_velocity(sides[2 * i + 1], vcm);
+        if ((c.above[i] - c.below[i] + dt * (va - vb)).dot(nl) > 0.0) continue;
+        auto flag = [&](int64_t n, double) {  // (relaxed: only ever set to 1 here, by any point)
+          const int32_t b = node_block_[n];
+          if (b >= 0) std::atomic_ref<uint8_t>(closing_[b * nc + ci]).store(1, std::memory_order_relaxed);
+        };
+        linear_nodes(c.above[i], flag);
+        linear_nodes(c.below[i], flag);
+      }
+    }
+  }
+
+  // Do keys a and b differ in exactly one crack? Then crack is that crack, and rank (+1 above,
+  // 0 not crossed, -1 below) says which field holds the material above it.
+  static bool differ_in_one_crack(uint32_t a, uint32_t b, int& crack, int& rank_a, int& rank_b) {
+    int cr[4], ra[4], rb[4], n = 0;
+    auto add = [&](uint32_t key, int* r) {
+      for (int c = 0; c < 2; ++c) {
+        const uint32_t code = (key >> (16 * c)) & 0xffffu;
+        if (!code) continue;
+        const int k = static_cast<int>((code - 1) / 2), rank = (code - 1) % 2 ? -1 : 1;
+        int i = 0;
+        while (i < n && cr[i] != k) ++i;
+        if (i == n) {
+          cr[n] = k, ra[n] = 0, rb[n] = 0;
+          ++n;
+        }
+        r[i] = rank;
+      }
+    };
+    add(a, ra);
+    add(b, rb);
+    int diff = 0;
+    for (int i = 0; i < n; ++i)
+      if (ra[i] != rb[i]) {
+        ++diff;
+        crack = cr[i], rank_a = ra[i], rank_b = rb[i];
+      }
+    return diff == 1;
+  }
+
+  std::vector<uint8_t> closing_;  // per block and crack: a crack point's faces close (contact())
+};
+
+}  // namespace cleave::crack_fields

@@ -1,0 +1,181 @@
+// Layer of the crack fields (libmpm/mpm/crack_fields.hpp; layering: grid_cells.hpp): multi-field
+// nodes, i.e. which velocity field of its node each classified particle-node pair uses. Key 0 (no
+// crossing) is the node's ordinary field and lives in the stepper's grid arrays; a node that also
+// receives another key gets a block of kExtra slots, so a node holds up to four fields as in
+// NairnMPM. A pair that would need a fifth field is counted (take_overflow) and uses the node's
+// ordinary field. Slots are numbered serially in particle order, so the layout, and with it every
+// sum over a node's fields, is the same for any thread count. The layout only: the values of the
+// extra fields are the next layer's (extra_fields.hpp).
+// 2D only: each slot also sums the normals of the crack::Crack2D segments its pairs crossed.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "libmpm/crack/crack2d.hpp"
+#include "libmpm/mpm/crack_fields/classification.hpp"
+#include "libmpm/mpm/model.hpp"
+#include "libmpm/mpm/stencil.hpp"
+
+namespace cleave::crack_fields {
+
+template <int Dim, class SF>
+class FieldSlots : public Classification<Dim, SF> {
+  static_assert(Dim == 2, "crack fields: 2D only (normals of crack::Crack2D segments)");
+  using Base = Classification<Dim, SF>;
+  using St = Stencil<Dim, SF>;
+  using V = Vec<Dim>;
+
+ public:
+  using Base::N;
+  static constexpr int kExtra = 3;  // extra fields per node: four in all
+
+  std::size_t block_count() const { return block_node_.size(); }
+
+  // Calls f(node, x, w, g) for every stencil node of near particle k (index into near_list()):
+  // x < 0 means the node's ordinary field (the stepper's arrays), else the extra slot index.
+  // (Most near particles use only ordinary fields: they take a path with x = -1 known to the compiler.)
+  template <class F>
+  void for_each_pair(std::size_t k, const St& s, F&& f) const {
+    if (!slot_any_[k]) {
+      s.for_each([&](int64_t n, double w, const V& g) { f(n, -1, w, g); });
+      return;
+    }
+    const uint8_t* sl = &pair_slot_[k * N];
+    int j = 0;
+    s.for_each([&](int64_t n, double w, const V& g) {
+      const uint8_t q = sl[j++];
+      f(n, q ? static_cast<int32_t>(node_block_[n] * kExtra + q - 1) : -1, w, g);
+    });
+  }
+  template <class F>
+  void for_each_pair_weight(std::size_t k, const St& s, F&& f) const {
+    if (!slot_any_[k]) {
+      s.for_each_weight([&](int64_t n, double w) { f(n, -1, w); });
+      return;
+    }
+    const uint8_t* sl = &pair_slot_[k * N];
+    int j = 0;
+    s.for_each_weight([&](int64_t n, double w) {
+      const uint8_t q = sl[j++];
+      f(n, q ? static_cast<int32_t>(node_block_[n] * kExtra + q - 1) : -1, w);
+    });
+  }
+
+  // Pairs that needed a fifth field since the last call (reported by the stepper).
+  long take_overflow() {
+    const long o = overflow_;
+    overflow_ = 0;
+    return o;
+  }
+
+ protected:
+  using Base::cracks_;
+  using Base::G_;
+  using Base::key_any_;
+  using Base::kOverflow;
+  using Base::near_;
+  using Base::near_st_;
+  using Base::pair_key_;
+  using Base::pair_seg_;
+
+  explicit FieldSlots(Model<Dim>& m) : Base(m) { node_block_.assign(G_.node_count(), -1); }
+
+  // Serial, in particle order: deterministic slot numbering for any thread count. (The layer above
+  // sizes the fields' values to the slots.)
+  void allocate_slots() {
+    for (int64_t n : block_node_) node_block_[n] = -1;
+    block_node_.clear();
+    block_nslots_.clear();
+    block_key_.clear();
+    std::vector<V>& normals = normals_next_;  // per slot, two (one per code of the key)
+    normals.clear();
+    seg_normal_.resize(cracks_.size());
+    for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
+      const auto& c = cracks_[ci];
+      seg_normal_[ci].resize(c.points.size() - 1);
+      for (std::size_t sgi = 0; sgi + 1 < c.points.size(); ++sgi) seg_normal_[ci][sgi] = segment_normal(c, sgi);
+    }
+    const std::size_t nn = near_.size();
+    pair_slot_.assign(nn * N, 0);
+    slot_any_.assign(nn, 0);
+    for (std::size_t k = 0; k < nn; ++k) {
+      if (!key_any_[k]) continue;  // every key 0: every pair uses the ordinary field
+      int j = 0;
+      near_st_[k].for_each_weight([&](int64_t n, double) {
+        const std::size_t q = k * N + j++;
+        const uint32_t key = pair_key_[q];
+        if (key == 0) return;
+        if (key == kOverflow) {
+          ++overflow_;  // more crossings than a key holds: the pair uses the ordinary field
+          return;
+        }
+        int32_t b = node_block_[n];
+        if (b < 0) {
+          b = static_cast<int32_t>(block_node_.size());
+          node_block_[n] = b;
+          block_node_.push_back(n);
+          block_nslots_.push_back(0);
+          block_key_.insert(block_key_.end(), kExtra, 0u);
+          normals.insert(normals.end(), 2 * kExtra, V::Zero());
+        }
+        const int32_t x = extra_field(n, key);
+        int slot = x < 0 ? -1 : x - b * kExtra;
+        if (slot < 0) {
+          if (block_nslots_[b] == kExtra) {
+            ++overflow_;  // a fifth field: this pair falls back to the ordinary field
+            return;
+          }
+          slot = block_nslots_[b]++;
+          block_key_[b * kExtra + slot] = key;
+        }
+        pair_slot_[q] = static_cast<uint8_t>(slot + 1);
+        slot_any_[k] = 1;
+        for (int c = 0; c < 2; ++c) {
+          const uint32_t code = (key >> (16 * c)) & 0xffffu;
+          if (!code) continue;
+          const int crack = static_cast<int>((code - 1) / 2);
+          normals[2 * (b * kExtra + slot) + c] += seg_normal_[crack][pair_seg_[2 * q + c]];
+        }
+      });
+    }
+    normal_.swap(normals);
+  }
+
+  // The extra-field slot of node n holding `key`, or -1 when the node has none.
+  int32_t extra_field(int64_t n, uint32_t key) const {
+    const int32_t b = node_block_[n];
+    if (b < 0) return -1;
+    for (int s = 0; s < block_nslots_[b]; ++s)
+      if (block_key_[b * kExtra + s] == key) return b * kExtra + s;
+    return -1;
+  }
+
+  // Sum of the crack normals stored for `crack` in field x (none for the ordinary field).
+  V normal_sum(int32_t x, int crack) const {
+    if (x < 0) return V::Zero();
+    const uint32_t key = block_key_[x];
+    V s = V::Zero();
+    for (int c = 0; c < 2; ++c) {
+      const uint32_t code = (key >> (16 * c)) & 0xffffu;
+      if (code && static_cast<int>((code - 1) / 2) == crack) s += normal_[2 * x + c];
+    }
+    return s;
+  }
+
+  static V segment_normal(const crack::Crack2D& c, std::size_t s) {
+    const V t = c.points[s + 1] - c.points[s];
+    return V(t.y(), -t.x()) / t.norm();  // right of the crack direction: from above to below
+  }
+
+  std::vector<uint8_t> slot_any_;  // per near particle: does a pair use an extra field (allocate_slots)
+  std::vector<uint8_t> pair_slot_;  // per pair: 0 for the ordinary field, else 1 + slot in the block
+  std::vector<int32_t> node_block_;  // per node: its block, or -1
+  std::vector<int64_t> block_node_;
+  std::vector<uint8_t> block_nslots_;
+  std::vector<uint32_t> block_key_;  // per slot
+  std::vector<V> normal_, normals_next_;  // per slot, two
+  long overflow_ = 0;
+  std::vector<std::vector<V>> seg_normal_;  // per crack and segment: segment_normal, for allocate_slots
+};
+
+}  // namespace cleave::crack_fields
