@@ -7,27 +7,13 @@
 
 #include "libmpm/io/crack_output.hpp"
 #include "libmpm/mpm/particle_output.hpp"
+#include "libmpm/method/describe.hpp"
 #include "libmpm/mpm/mpm_method.hpp"
 #include "libmpm/mpm/mpm_scene.hpp"
 #include "libmpm/mpm/mpm_step.hpp"
 
 namespace cleave {
 namespace {
-
-std::string format(const char* f, auto... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, f, args...);
-  return buf;
-}
-
-template <int Dim>
-std::string position(const Vec<Dim>& x) {
-  std::ostringstream s;
-  s << "(";
-  for (int d = 0; d < Dim; ++d) s << (d ? ", " : "") << x[d];
-  s << ") m";
-  return s.str();
-}
 
 template <int Dim>
 class MpmMethod final : public Method<Dim> {
@@ -46,8 +32,7 @@ class MpmMethod final : public Method<Dim> {
     std::vector<std::string> out;
     out.push_back(format("%s%dD %s, %zu particles in %zu bodies, %zu materials",
                          m.title.empty() ? "" : (m.title + ": ").c_str(), Dim,
-                         m.analysis == Analysis::PlaneStress ? "plane stress"
-                         : m.analysis == Analysis::PlaneStrain ? "plane strain" : "solid",
+                         analysis_name(m.analysis),
                          m.particles.size(), m.bodies.size(), m.materials.size()));
     std::string grid = format("grid: cell %.6g m, %zu nodes", m.grid.h, m.grid.node_count());
     for (int d = 0; d < Dim; ++d) grid += format("%s%d", d ? " x " : " (", m.grid.nodes[d]);
@@ -77,7 +62,7 @@ class MpmMethod final : public Method<Dim> {
 
   StepProblem step() override {
     StepProblem p = stepper_->step();
-    if (p) p.what = "particle " + std::to_string(p.particle) + " at " + position<Dim>(m_.particles.x[p.particle]) +
+    if (p) p.what = "particle " + std::to_string(p.particle) + " at " + position_text<Dim>(m_.particles.x[p.particle]) +
                     " " + p.what;
     return p;
   }
@@ -86,11 +71,9 @@ class MpmMethod final : public Method<Dim> {
   std::string take_warning() override { return stepper_->take_warning(); }
   std::string fastest_point() const override {
     const auto& P = m_.particles;
-    std::size_t fast = 0;
-    for (std::size_t p = 1; p < P.size(); ++p)
-      if (P.v[p].squaredNorm() > P.v[fast].squaredNorm()) fast = p;
+    const std::size_t fast = fastest<Dim>(P.v);
     std::ostringstream s;
-    s << "particle " << fast << " at " << position<Dim>(P.x[fast]) << ", speed " << P.v[fast].norm() << " m/s";
+    s << "particle " << fast << " at " << position_text<Dim>(P.x[fast]) << ", speed " << P.v[fast].norm() << " m/s";
     return s.str();
   }
 

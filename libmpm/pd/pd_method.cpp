@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "libmpm/io/particle_fields.hpp"
+#include "libmpm/method/describe.hpp"
 #include "libmpm/io/point_set.hpp"
 #include "libmpm/pd/pd_scene.hpp"
 #include "libmpm/pd/pd_solver.hpp"
@@ -61,12 +62,6 @@ template io::PointSet pd_point_set<3>(const PdSystem<3>&, const PdSolver<3>&);
 
 namespace {
 
-std::string format(const char* f, auto... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, f, args...);
-  return buf;
-}
-
 template <int Dim>
 class PdMethod final : public Method<Dim> {
  public:
@@ -83,8 +78,7 @@ class PdMethod final : public Method<Dim> {
     const auto& k = m.materials[0].k;
     return {format("%s%dD %s, peridynamics: %zu points in %zu bodies, %zu bonds (%zu removed by pre-cracks)",
                    m.title.empty() ? "" : (m.title + ": ").c_str(), Dim,
-                   m.analysis == Analysis::PlaneStress ? "plane stress"
-                   : m.analysis == Analysis::PlaneStrain ? "plane strain" : "solid",
+                   analysis_name(m.analysis),
                    m.points.size(), m.bodies.size(), m.bond_count, m.precrack_bonds),
             format("lattice: dx = %.6g m, horizon = %d dx = %.6g m; %s: c = %.6g, s0 = %.6g, implied nu = %.4g", m.dx,
                    m.horizon_factor, m.delta, m.materials[0].name.c_str(), k.c, k.s0, k.implied_nu),
@@ -104,13 +98,10 @@ class PdMethod final : public Method<Dim> {
   long step_count() const override { return solver_.step_count(); }
   std::string fastest_point() const override {
     const auto& P = m_.points;
-    std::size_t fast = 0;
-    for (std::size_t p = 1; p < P.size(); ++p)
-      if (P.v[p].squaredNorm() > P.v[fast].squaredNorm()) fast = p;
+    const std::size_t fast = fastest<Dim>(P.v);
     std::ostringstream s;
-    s << "point " << fast << " at (";
-    for (int d = 0; d < Dim; ++d) s << (d ? ", " : "") << P.x0[fast][d] + P.u[fast][d];
-    s << ") m, speed " << P.v[fast].norm() << " m/s";
+    s << "point " << fast << " at " << position_text<Dim>(P.x0[fast] + P.u[fast]) << ", speed " << P.v[fast].norm()
+      << " m/s";
     return s.str();
   }
 
