@@ -1,5 +1,5 @@
 // Multiple velocity fields at nodes near 2D explicit cracks (seed 002, §2.1-2.2 and Appendix A),
-// with crack contact and crack translation (Task 7): the stepper's one view of the crack machinery.
+// with crack contact and crack translation (Task 7).
 //
 // Every particle-node pair has a field key: the cracks its connecting line crosses and the side
 // the particle is on (at most two crossings, so two cracks may meet at a node). Key 0 (no
@@ -13,20 +13,26 @@
 // particles) can neither cross a crack nor touch a multi-field node with a non-zero weight, so they
 // keep the stepper's single-field fast path; only "near" particles take the paths here.
 //
-// The work is split into layers in libmpm/mpm/crack_fields/, each built on the ones before it
-// (grid_cells.hpp says why layers rather than separate objects):
+// The state and the machinery are layers in libmpm/mpm/crack_fields/, each built on the ones
+// before it (grid_cells.hpp says why layers):
 //   grid_cells.hpp      cell and node arithmetic
 //   spatial_index.hpp   the segment index and the near test
 //   classification.hpp  near-particle list, stencils and the field key of every pair (line crossing)
-//   field_slots.hpp     which slot of which multi-field node each pair uses
-//   extra_fields.hpp    the extra fields' values and the grid tasks on them
+//   field_slots.hpp     the extra fields of multi-field nodes and which one each pair uses
 //   crack_motion.hpp    the fields each crack surface follows; moving the cracks (Task 7)
 //   contact.hpp         contact detection and laws between a node's fields
-// This class runs them in the step's order and shows the stepper only what it uses.
+// This class is the stepper's interface: what each task of the step does with the crack fields.
+// The functions with loops that the stepper's particle and grid passes inline (slot iteration,
+// Task 1, the grid tasks) are defined here rather than taken from a layer: called through a base
+// class they changed the shape of the inlined code, and with it which multiplies GCC fused into
+// adds and the last bits of the force pass (grid_cells.hpp). One-line accessors, which fold into
+// plain memory references, and the crack-wide steps come from the layers.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
+#include "libmpm/crack/crack2d.hpp"
 #include "libmpm/mpm/crack_fields/contact.hpp"
 #include "libmpm/mpm/model.hpp"
 #include "libmpm/mpm/stencil.hpp"
@@ -38,30 +44,46 @@ template <class SF>
 class CrackFields : crack_fields::CrackContact<2, SF> {
   static constexpr int Dim = 2;
   using Base = crack_fields::CrackContact<Dim, SF>;
+  using St = Stencil<2, SF>;
   using V = Vec<2>;
+  using Law = crack::Crack2D::ContactLaw;
 
  public:
-  using Base::kExtra;
-  using Base::kReach;
+  using Base::kExtra;  // extra fields per node: four in all
+  using Base::kReach;  // cells from a segment that its index entries reach
   using Base::N;
   using typename Base::Entry;
   using typename Base::NearTest;
 
-  CrackFields(Model<2>& m, GridFields<2>& grid, std::vector<NodeKinematics<2>>& kin) : Base(m, grid, kin) {}
+  CrackFields(Model<2>& m, GridFields<2>& grid, std::vector<NodeKinematics<2>>& kin) : Base(m, grid, kin) {
+    area0_.resize(P_.size());
+    for (const auto& b : m.bodies)
+      for (std::size_t p = b.first; p < b.first + b.count; ++p) area0_[p] = P_.volume0[p] / b.thickness;
+    for (const auto& c : cracks_) {
+      if (c.contact_law == Law::None) continue;
+      (c.detection == crack::Crack2D::Detection::Volume ? need_volume_ : need_disp_) = true;
+    }
+  }
 
   bool active() const { return !cracks_.empty(); }
-  using Base::block_count;
-  using Base::near_flags;
-  using Base::near_index;
-  using Base::near_list;
-  using Base::stencil;
+  // One flag per particle: near a crack at the start of the step (set by the stepper's strip-order
+  // pass with near_test(), between prepare_index() and prepare_fields()).
+  const uint8_t* near_flags() const { return near_flag_.data(); }
+  uint8_t* near_flags() { return near_flag_.data(); }
+  const std::vector<int32_t>& near_list() const { return near_; }
+  // Per particle: its index in near_list(), or -1 when it is not near a crack.
+  const int32_t* near_index() const { return near_index_.data(); }
+  // The stencil of near particle k (index into near_list()), evaluated once in prepare_fields(): every pass
+  // of a step evaluates the shape functions at the start-of-step positions (a pass that moves the
+  // particles does so after its last use of them), so one evaluation serves the whole step.
+  const St& stencil(std::size_t k) const { return near_st_[k]; }
+  std::size_t block_count() const { return block_node_.size(); }
 
   // --- Task 1 preamble: spatial index, near particles, line crossing (Appendix A), field slots ----
   // In three parts: prepare_index(); then the near flags, set from near_test() in the stepper's
   // strip-order pass, which streams every particle's position anyway (a pass of its own here cost
   // about 2 % of a step at 230 000 particles); then prepare_fields(whether a flag changed).
-  using Base::near_test;
-  using Base::prepare_index;
+  using Base::near_test, Base::prepare_index;
   void prepare_fields(bool flags_changed) {
     side_fields_.resize(cracks_.size());
     side_valid_.assign(cracks_.size(), 0);
@@ -77,15 +99,80 @@ class CrackFields : crack_fields::CrackContact<2, SF> {
     allocate_fields();
   }
 
-  // The pairs of a near particle with their fields (for_each_pair, for_each_pair_weight), Task 1
-  // for a near particle (extrapolate), and any field's nodal values (field x < 0: the ordinary one).
-  using Base::extrapolate;
-  using Base::for_each_pair;
-  using Base::for_each_pair_weight;
-  using Base::force;
-  using Base::kin;
-  using Base::mass;
-  using Base::momentum;
+  // Calls f(node, x, w, g) for every stencil node of near particle k (index into near_list()):
+  // x < 0 means the node's ordinary field (the stepper's arrays), else the extra slot index.
+  // (Most near particles use only ordinary fields: they take a path with x = -1 known to the compiler.)
+  template <class F>
+  void for_each_pair(std::size_t k, const St& s, F&& f) const {
+    if (!slot_any_[k]) {
+      s.for_each([&](int64_t n, double w, const V& g) { f(n, -1, w, g); });
+      return;
+    }
+    const uint8_t* sl = &pair_slot_[k * N];
+    int j = 0;
+    s.for_each([&](int64_t n, double w, const V& g) {
+      const uint8_t q = sl[j++];
+      f(n, q ? static_cast<int32_t>(node_block_[n] * kExtra + q - 1) : -1, w, g);
+    });
+  }
+  template <class F>
+  void for_each_pair_weight(std::size_t k, const St& s, F&& f) const {
+    if (!slot_any_[k]) {
+      s.for_each_weight([&](int64_t n, double w) { f(n, -1, w); });
+      return;
+    }
+    const uint8_t* sl = &pair_slot_[k * N];
+    int j = 0;
+    s.for_each_weight([&](int64_t n, double w) {
+      const uint8_t q = sl[j++];
+      f(n, q ? static_cast<int32_t>(node_block_[n] * kExtra + q - 1) : -1, w);
+    });
+  }
+
+  // Task 1 for near particle k: masses and momenta per field (eq. 26), total nodal volume (eq. 27)
+  // and, for displacement contact, mass-weighted displacements per field (seed 000 eq. 68).
+  // Each detection method's sums only when a crack uses it (volumes: seed 002; displacements: seed 000).
+  void extrapolate(std::size_t k, const St& s) {
+    if (need_volume_) {
+      if (need_disp_) return extrapolate<true, true>(k, s);
+      return extrapolate<true, false>(k, s);
+    }
+    if (need_disp_) return extrapolate<false, true>(k, s);
+    extrapolate<false, false>(k, s);
+  }
+  template <bool volume, bool disp>
+  void extrapolate(std::size_t k, const St& s) {
+    const std::size_t p = static_cast<std::size_t>(near_[k]);
+    const double mp = P_.mass[p];
+    const V mv = mp * P_.v[p];
+    V mu = V::Zero();
+    if constexpr (disp) mu = mp * P_.u[p];
+    double area = 0.0;
+    if constexpr (volume) {
+      const auto& e = P_.strain[p];
+      area = area0_[p] * (1.0 + e[0]) * (1.0 + e[1]);  // eq. 25
+    }
+    for_each_pair_weight(k, s, [&](int64_t n, int32_t x, double w) {
+      if (x < 0) {
+        grid_.mass[n] += mp * w;
+        grid_.momentum[n] += mv * w;
+        if constexpr (disp) {
+          const int32_t b = node_block_[n];
+          if (b >= 0) disp0_[b] += mu * w;
+        }
+      } else {
+        mass_[x] += mp * w;
+        momentum_[x] += mv * w;
+        if constexpr (disp) disp_[x] += mu * w;
+      }
+      if constexpr (volume) {
+        const int32_t b = node_block_[n];
+        if (b >= 0) volume_[b] += area * w;
+      }
+    });
+  }
+
+  using Base::force, Base::kin, Base::mass, Base::momentum;  // field x of node n (x < 0: the ordinary one)
 
   // Field slot (as in for_each_pair) for the pair particle p - node n, classified afresh: for loads
   // whose stencil is not the particle's own (face tractions). Falls back to the ordinary field when
@@ -98,12 +185,38 @@ class CrackFields : crack_fields::CrackContact<2, SF> {
     return extra_field(n, key);
   }
 
-  // The grid tasks for the extra fields.
-  using Base::apply_momentum_conditions;
-  using Base::body_force_and_damping;
-  using Base::clear_momenta;
-  using Base::nodal_velocities;
-  using Base::zero_prescribed_forces;
+  // Task 3, grid part, for the extra fields: body force and damping (eq. 28).
+  void body_force_and_damping(const V& gravity, double kappa) {
+    for (std::size_t x = 0; x < mass_.size(); ++x)
+      if (mass_[x] > 0.0) force_[x] += mass_[x] * gravity - kappa * momentum_[x];
+  }
+
+  // Prescribed velocity components hold for every field at the node (Task 2 / Task 6c).
+  void apply_momentum_conditions(const GridConditions<2>& C) {
+    for (std::size_t c = 0; c < C.node.size(); ++c) {
+      const int32_t b = node_block_[C.node[c]];
+      if (b < 0) continue;
+      for (int s = 0; s < block_nslots_[b]; ++s)
+        for (int d = 0; d < 2; ++d)
+          if (C.mask[c] & (1u << d)) momentum_[b * kExtra + s][d] = mass_[b * kExtra + s] * C.velocity[c][d];
+    }
+  }
+  // Zero force on prescribed components for every field (Task 3); returns the reaction power of
+  // the extra fields, sum f . v_prescribed, for the external-work account.
+  double zero_prescribed_forces(const GridConditions<2>& C) {
+    double power = 0.0;
+    for (std::size_t c = 0; c < C.node.size(); ++c) {
+      const int32_t b = node_block_[C.node[c]];
+      if (b < 0) continue;
+      for (int s = 0; s < block_nslots_[b]; ++s)
+        for (int d = 0; d < 2; ++d)
+          if (C.mask[c] & (1u << d)) {
+            power += force_[b * kExtra + s][d] * C.velocity[c][d];
+            force_[b * kExtra + s][d] = 0.0;
+          }
+    }
+    return power;
+  }
 
   // Task 4 for the extra fields (eq. 29), then contact with force back-calculation, then the
   // velocities and accelerations of every field at multi-field nodes.
@@ -127,30 +240,28 @@ class CrackFields : crack_fields::CrackContact<2, SF> {
     }
   }
 
+  // Task 6c starts the extra fields' momenta afresh (the ordinary field's are zeroed by the stepper).
+  void clear_momenta() { std::fill(momentum_.begin(), momentum_.end(), V::Zero()); }
+
+  // Nodal velocities of the extra fields from the latest momenta (Subtask 1, eq. 34).
+  void nodal_velocities() {
+    for (std::size_t x = 0; x < mass_.size(); ++x)
+      if (mass_[x] > 0.0) xkin_[x].v = momentum_[x] / mass_[x];
+  }
+
   using Base::contact;      // crack contact (Tasks 2 and 6c; Task 4 in update_momenta)
   using Base::move_cracks;  // Task 7
   using Base::take_overflow;
 
  private:
-  using Base::allocate_fields;
-  using Base::block_node_;
-  using Base::block_nslots_;
-  using Base::classify;
-  using Base::classify_pairs;
-  using Base::collect_near_particles;
-  using Base::cracks_;
-  using Base::extra_field;
-  using Base::force_;
-  using Base::grid_;
-  using Base::kin_;
-  using Base::kOverflow;
-  using Base::mass_;
-  using Base::momentum_;
-  using Base::near_flag_;
-  using Base::P_;
-  using Base::side_fields_;
-  using Base::side_valid_;
-  using Base::xkin_;
+  using Base::allocate_fields, Base::block_node_, Base::block_nslots_, Base::classify, Base::classify_pairs;
+  using Base::collect_near_particles, Base::cracks_, Base::disp0_, Base::disp_, Base::extra_field;
+  using Base::force_, Base::grid_, Base::kin_, Base::kOverflow, Base::mass_, Base::momentum_, Base::near_;
+  using Base::near_flag_, Base::near_index_, Base::near_st_, Base::node_block_, Base::P_, Base::pair_slot_;
+  using Base::side_fields_, Base::side_valid_, Base::slot_any_, Base::volume_, Base::xkin_;
+
+  std::vector<double> area0_;  // per particle: its area at zero strain (eq. 25)
+  bool need_volume_ = false, need_disp_ = false;  // some crack detects contact by volume / displacement
 };
 
 }  // namespace cleave

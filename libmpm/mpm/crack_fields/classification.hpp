@@ -28,28 +28,10 @@ class Classification : public SpatialIndex<Dim, SF> {
  public:
   static constexpr int N = St::N;
 
-  // One flag per particle: near a crack at the start of the step (set by the stepper's strip-order
-  // pass with near_test(), between prepare_index() and prepare_fields()).
-  const uint8_t* near_flags() const { return near_flag_.data(); }
-  uint8_t* near_flags() { return near_flag_.data(); }
-  const std::vector<int32_t>& near_list() const { return near_; }
-  // Per particle: its index in near_list(), or -1 when it is not near a crack.
-  const int32_t* near_index() const { return near_index_.data(); }
-  // The stencil of near particle k (index into near_list()), evaluated once in prepare_fields(): every pass
-  // of a step evaluates the shape functions at the start-of-step positions (a pass that moves the
-  // particles does so after its last use of them), so one evaluation serves the whole step.
-  const St& stencil(std::size_t k) const { return near_st_[k]; }
-
  protected:
   using typename Base::Entry;
-  using Base::cell_head_;
-  using Base::cell_of;
-  using Base::cracks_;
-  using Base::entries_;
-  using Base::G_;
-  using Base::inv_h_;
-  using Base::node_position;
-  using Base::stride_;
+  using Base::cell_head_, Base::cell_of, Base::cracks_, Base::entries_, Base::G_, Base::inv_h_;
+  using Base::node_position, Base::stride_;
   static constexpr uint32_t kOverflow = crack::kFieldKeyOverflow;  // a line crossing three or more cracks
 
   explicit Classification(Model<Dim>& m) : Base(m), P_(m.particles) {
@@ -211,14 +193,14 @@ class Classification : public SpatialIndex<Dim, SF> {
   }
 
   Particles<Dim>& P_;
-  std::vector<uint8_t> near_flag_;
-  std::vector<int32_t> near_;
+  std::vector<uint8_t> near_flag_;  // per particle: near a crack at the start of the step
+  std::vector<int32_t> near_;       // the near particles, in particle order
   std::vector<int32_t> near_index_;  // per particle: index in near_, or -1
   std::vector<std::size_t> chunk_begin_;
-  std::vector<St> near_st_;
+  std::vector<St> near_st_;       // per near particle: its stencil at the start-of-step position
   std::vector<uint8_t> key_any_;  // per near particle: does a key differ from 0 (set by classify_pairs)
-  std::vector<uint32_t> pair_key_;
-  std::vector<int32_t> pair_seg_;
+  std::vector<uint32_t> pair_key_;  // per pair (near particle k, stencil node j: k N + j): field key
+  std::vector<int32_t> pair_seg_;   // per pair, two: the segment crossed for each code of the key
 };
 
 }  // namespace cleave::crack_fields

@@ -105,27 +105,10 @@ class CrackContact : public CrackMotion<Dim, SF> {
 
  protected:
   using typename Base::SideFields;
-  using Base::block_key_;
-  using Base::block_node_;
-  using Base::block_nslots_;
-  using Base::cm_velocity;
-  using Base::cracks_;
-  using Base::disp0_;
-  using Base::disp_;
-  using Base::force;
-  using Base::G_;
-  using Base::is_tip;
-  using Base::kExtra;
-  using Base::left_normal;
-  using Base::linear_nodes;
-  using Base::mass;
-  using Base::momentum;
-  using Base::node_block_;
-  using Base::normal_sum;
-  using Base::parallel_points;
-  using Base::side_fields;
-  using Base::side_velocity;
-  using Base::volume_;
+  using Base::block_key_, Base::block_node_, Base::block_nslots_, Base::cm_velocity, Base::cracks_;
+  using Base::disp0_, Base::disp_, Base::force, Base::G_, Base::is_tip, Base::kExtra, Base::left_normal;
+  using Base::linear_nodes, Base::mass, Base::momentum, Base::node_block_, Base::normal_sum;
+  using Base::parallel_points, Base::side_fields, Base::side_velocity, Base::volume_;
   using Law = crack::Crack2D::ContactLaw;
 
   CrackContact(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin) : Base(m, grid, kin) {}

@@ -11,15 +11,15 @@
 #include <vector>
 
 #include "libmpm/crack/crack2d.hpp"
-#include "libmpm/mpm/crack_fields/extra_fields.hpp"
+#include "libmpm/mpm/crack_fields/field_slots.hpp"
 #include "libmpm/mpm/model.hpp"
 
 namespace cleave::crack_fields {
 
 template <int Dim, class SF>
-class CrackMotion : public ExtraFields<Dim, SF> {
+class CrackMotion : public FieldSlots<Dim, SF> {
   static_assert(Dim == 2, "crack fields: 2D only (crack::Crack2D surfaces)");
-  using Base = ExtraFields<Dim, SF>;
+  using Base = FieldSlots<Dim, SF>;
   using V = Vec<Dim>;
 
  public:
@@ -60,20 +60,9 @@ class CrackMotion : public ExtraFields<Dim, SF> {
   }
 
  protected:
-  using Base::block_nslots_;
-  using Base::classify;
-  using Base::cracks_;
-  using Base::extra_field;
-  using Base::G_;
-  using Base::grid_;
-  using Base::kExtra;
-  using Base::kOverflow;
-  using Base::linear_nodes;
-  using Base::mass_;
-  using Base::momentum_;
-  using Base::node_block_;
-  using Base::node_position;
-  using Base::parallel_points;
+  using Base::block_nslots_, Base::classify, Base::cracks_, Base::extra_field, Base::G_, Base::grid_;
+  using Base::kExtra, Base::kOverflow, Base::linear_nodes, Base::mass_, Base::momentum_, Base::node_block_;
+  using Base::node_position, Base::parallel_points;
   static constexpr double kProbe = 1e-3;  // cells: how far above/below a surface its probe sits
 
   CrackMotion(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin) : Base(m, grid, kin) {}

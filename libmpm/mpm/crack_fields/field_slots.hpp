@@ -1,11 +1,11 @@
 // Layer of the crack fields (libmpm/mpm/crack_fields.hpp; layering: grid_cells.hpp): multi-field
-// nodes, i.e. which velocity field of its node each classified particle-node pair uses. Key 0 (no
-// crossing) is the node's ordinary field and lives in the stepper's grid arrays; a node that also
-// receives another key gets a block of kExtra slots, so a node holds up to four fields as in
-// NairnMPM. A pair that would need a fifth field is counted (take_overflow) and uses the node's
-// ordinary field. Slots are numbered serially in particle order, so the layout, and with it every
-// sum over a node's fields, is the same for any thread count. The layout only: the values of the
-// extra fields are the next layer's (extra_fields.hpp).
+// nodes, i.e. the extra velocity fields of a node and which of its fields each classified
+// particle-node pair uses. Key 0 (no crossing) is the node's ordinary field and lives in the
+// stepper's grid arrays; a node that also receives another key gets a block of kExtra slots, so a
+// node holds up to four fields as in NairnMPM. A pair that would need a fifth field is counted
+// (take_overflow) and uses the node's ordinary field. Slots are numbered serially in particle
+// order, so the layout, and with it every sum over a node's fields, is the same for any thread
+// count. Field x < 0 always means the node's ordinary field.
 // 2D only: each slot also sums the normals of the crack::Crack2D segments its pairs crossed.
 #pragma once
 #include <cstdint>
@@ -14,52 +14,30 @@
 #include "libmpm/crack/crack2d.hpp"
 #include "libmpm/mpm/crack_fields/classification.hpp"
 #include "libmpm/mpm/model.hpp"
-#include "libmpm/mpm/stencil.hpp"
 
-namespace cleave::crack_fields {
+namespace cleave {
+
+// Nodal velocity and acceleration side by side: Task 5 gathers both from one cache line.
+template <int Dim>
+struct NodeKinematics {
+  Vec<Dim> v, a;
+};
+
+namespace crack_fields {
 
 template <int Dim, class SF>
 class FieldSlots : public Classification<Dim, SF> {
   static_assert(Dim == 2, "crack fields: 2D only (normals of crack::Crack2D segments)");
   using Base = Classification<Dim, SF>;
-  using St = Stencil<Dim, SF>;
   using V = Vec<Dim>;
 
  public:
-  using Base::N;
   static constexpr int kExtra = 3;  // extra fields per node: four in all
 
-  std::size_t block_count() const { return block_node_.size(); }
-
-  // Calls f(node, x, w, g) for every stencil node of near particle k (index into near_list()):
-  // x < 0 means the node's ordinary field (the stepper's arrays), else the extra slot index.
-  // (Most near particles use only ordinary fields: they take a path with x = -1 known to the compiler.)
-  template <class F>
-  void for_each_pair(std::size_t k, const St& s, F&& f) const {
-    if (!slot_any_[k]) {
-      s.for_each([&](int64_t n, double w, const V& g) { f(n, -1, w, g); });
-      return;
-    }
-    const uint8_t* sl = &pair_slot_[k * N];
-    int j = 0;
-    s.for_each([&](int64_t n, double w, const V& g) {
-      const uint8_t q = sl[j++];
-      f(n, q ? static_cast<int32_t>(node_block_[n] * kExtra + q - 1) : -1, w, g);
-    });
-  }
-  template <class F>
-  void for_each_pair_weight(std::size_t k, const St& s, F&& f) const {
-    if (!slot_any_[k]) {
-      s.for_each_weight([&](int64_t n, double w) { f(n, -1, w); });
-      return;
-    }
-    const uint8_t* sl = &pair_slot_[k * N];
-    int j = 0;
-    s.for_each_weight([&](int64_t n, double w) {
-      const uint8_t q = sl[j++];
-      f(n, q ? static_cast<int32_t>(node_block_[n] * kExtra + q - 1) : -1, w);
-    });
-  }
+  double& mass(int64_t n, int32_t x) { return x < 0 ? grid_.mass[n] : mass_[x]; }
+  V& momentum(int64_t n, int32_t x) { return x < 0 ? grid_.momentum[n] : momentum_[x]; }
+  V& force(int64_t n, int32_t x) { return x < 0 ? grid_.force[n] : force_[x]; }
+  const NodeKinematics<Dim>& kin(int64_t n, int32_t x) const { return x < 0 ? kin_[n] : xkin_[x]; }
 
   // Pairs that needed a fifth field since the last call (reported by the stepper).
   long take_overflow() {
@@ -69,20 +47,16 @@ class FieldSlots : public Classification<Dim, SF> {
   }
 
  protected:
-  using Base::cracks_;
-  using Base::G_;
-  using Base::key_any_;
-  using Base::kOverflow;
-  using Base::near_;
-  using Base::near_st_;
-  using Base::pair_key_;
-  using Base::pair_seg_;
+  using Base::cracks_, Base::G_, Base::key_any_, Base::kOverflow, Base::N, Base::near_, Base::near_st_;
+  using Base::pair_key_, Base::pair_seg_;
 
-  explicit FieldSlots(Model<Dim>& m) : Base(m) { node_block_.assign(G_.node_count(), -1); }
+  FieldSlots(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin)
+      : Base(m), grid_(grid), kin_(kin) {
+    node_block_.assign(G_.node_count(), -1);
+  }
 
-  // Serial, in particle order: deterministic slot numbering for any thread count. (The layer above
-  // sizes the fields' values to the slots.)
-  void allocate_slots() {
+  // Serial, in particle order: deterministic slot numbering for any thread count.
+  void allocate_fields() {
     for (int64_t n : block_node_) node_block_[n] = -1;
     block_node_.clear();
     block_nslots_.clear();
@@ -138,7 +112,15 @@ class FieldSlots : public Classification<Dim, SF> {
         }
       });
     }
+    const std::size_t ns = block_node_.size() * kExtra;
+    mass_.assign(ns, 0.0);
+    momentum_.assign(ns, V::Zero());
+    force_.assign(ns, V::Zero());
+    disp_.assign(ns, V::Zero());
+    xkin_.assign(ns, NodeKinematics<Dim>{V::Zero(), V::Zero()});
     normal_.swap(normals);
+    volume_.assign(block_node_.size(), 0.0);
+    disp0_.assign(block_node_.size(), V::Zero());
   }
 
   // The extra-field slot of node n holding `key`, or -1 when the node has none.
@@ -167,15 +149,20 @@ class FieldSlots : public Classification<Dim, SF> {
     return V(t.y(), -t.x()) / t.norm();  // right of the crack direction: from above to below
   }
 
-  std::vector<uint8_t> slot_any_;  // per near particle: does a pair use an extra field (allocate_slots)
+  GridFields<Dim>& grid_;                  // the ordinary fields (the stepper's)
+  std::vector<NodeKinematics<Dim>>& kin_;  // and their velocities and accelerations
+  std::vector<uint8_t> slot_any_;   // per near particle: does a pair use an extra field (allocate_fields)
   std::vector<uint8_t> pair_slot_;  // per pair: 0 for the ordinary field, else 1 + slot in the block
   std::vector<int32_t> node_block_;  // per node: its block, or -1
   std::vector<int64_t> block_node_;
   std::vector<uint8_t> block_nslots_;
-  std::vector<uint32_t> block_key_;  // per slot
-  std::vector<V> normal_, normals_next_;  // per slot, two
+  std::vector<uint32_t> block_key_;  // per slot x = block * kExtra + s
+  std::vector<double> mass_, volume_;  // per slot; volume: per block (all its fields)
+  std::vector<V> momentum_, force_, disp_, normal_, disp0_, normals_next_;  // normal_: two per slot; disp0: per block
+  std::vector<NodeKinematics<Dim>> xkin_;
   long overflow_ = 0;
-  std::vector<std::vector<V>> seg_normal_;  // per crack and segment: segment_normal, for allocate_slots
+  std::vector<std::vector<V>> seg_normal_;  // per crack and segment: segment_normal, for allocate_fields
 };
 
-}  // namespace cleave::crack_fields
+}  // namespace crack_fields
+}  // namespace cleave

@@ -4,10 +4,12 @@
 // position with the very same expressions: they all inherit them from here.
 //
 // Why layers: CrackFields is one object built as a chain of single inheritance (grid cells ->
-// spatial index -> classification -> field slots -> extra fields -> crack motion -> contact), each
-// layer using the ones below it. Every function then reaches every array through the same `this`,
-// as when it was one class, so the stepper's inlined hot loops compile to the same code and the
-// results stay bit-identical (GCC's fused multiply-adds follow the shape of the inlined code).
+// spatial index -> classification -> field slots -> crack motion -> contact -> CrackFields), each
+// layer using the arrays and functions of those below it through the same `this`, as when it was
+// one class. Separate objects joined by references compiled to other code, and GCC, which fuses
+// multiplies and adds (-ffp-contract=fast) as the shape of the inlined code suggests, then
+// rounded some sums differently: the results must stay bit-identical. For the same reason the
+// functions that the stepper's passes inline are defined in CrackFields itself (see there).
 //
 // 2D only: cells are numbered i * ny + j and nodes i * stride + j, and a point's cell has four
 // nodes; the crack fields exist for crack::Crack2D polylines alone.

@@ -71,9 +71,7 @@ class SpatialIndex : public GridCells<Dim> {
   }
 
  protected:
-  using Base::cells_;
-  using Base::G_;
-  using Base::inv_h_;
+  using Base::cells_, Base::G_, Base::inv_h_;
 
   explicit SpatialIndex(Model<Dim>& m) : Base(m.grid), cracks_(m.cracks) {
     cell_head_.assign(static_cast<std::size_t>(cells_[0]) * cells_[1], -1);
