@@ -18,7 +18,6 @@ template std::unique_ptr<Method<3>> build_method<3>(const nlohmann::json&);
 SceneMethod SceneMethod::build(const nlohmann::json& scene) {
   SceneMethod s;
   const int dim = scene_dimension(scene);
-  scene_method(scene);  // a malformed "method" is reported before anything is built
   if (dim == 2) s.m2_ = build_method<2>(scene);
   else s.m3_ = build_method<3>(scene);
   s.hash_ = scene_hash(scene);

@@ -99,7 +99,7 @@ class MpmMethod final : public Method<Dim> {
   }
   io::PointSet frame(std::size_t series) override {
     if (series == 0) return particle_point_set<Dim>(m_, m_.output.fields);
-    if (m_.crack_tips) return io::crack_point_set(m_.cracks, stepper_->crack_tip_parameters(*m_.crack_tips));
+    if (m_.crack_tips) return io::crack_point_set(m_.cracks, tips_now());
     return io::crack_point_set(m_.cracks);
   }
 
@@ -111,7 +111,7 @@ class MpmMethod final : public Method<Dim> {
     std::vector<std::vector<double>> rows;
     if (!m_.crack_tips) return rows;
     const double t = stepper_->time();
-    for (const auto& r : stepper_->crack_tip_parameters(*m_.crack_tips))
+    for (const auto& r : tips_now())
       rows.push_back({t, double(r.crack), double(r.end), r.x.x(), r.x.y(), r.J1, r.J2, r.KI, r.KII});
     return rows;
   }
@@ -128,6 +128,7 @@ class MpmMethod final : public Method<Dim> {
     double t = 0, work = 0;
     long step = 0;
     r.value(t), r.value(step), r.value(work);
+    tips_step_ = -1;  // the state changes under the cache
     auto& P = m_.particles;
     r.array(P.x, "particles"), r.array(P.v, "particles"), r.array(P.u, "particles");
     r.array(P.stress, "particles"), r.array(P.strain, "particles"), r.array(P.rotation, "particle rotations");
@@ -140,9 +141,21 @@ class MpmMethod final : public Method<Dim> {
 
 
  private:
+  // J and K at the tips in the current state: a frame (cracks.vtu) and a crack_tips.csv row at the
+  // same step share one evaluation of the contours.
+  const std::vector<crack::TipRecord>& tips_now() {
+    if (tips_step_ != stepper_->step_count()) {
+      tips_ = stepper_->crack_tip_parameters(*m_.crack_tips);
+      tips_step_ = stepper_->step_count();
+    }
+    return tips_;
+  }
+
   std::unique_ptr<Model<Dim>> owned_;  // null when the caller owns the model
   Model<Dim>& m_;
   std::unique_ptr<Stepper<Dim>> stepper_;
+  std::vector<crack::TipRecord> tips_;
+  long tips_step_ = -1;  // step of tips_; -1: none yet
 };
 
 }  // namespace
