@@ -16,6 +16,7 @@
 #include "libmpm/core/error.hpp"
 #include "libmpm/crack/crack2d.hpp"
 #include "libmpm/crack/crossing.hpp"
+#include "libmpm/crack/surface.hpp"
 
 namespace {
 
@@ -29,6 +30,7 @@ using cleave::crack::crack_crossing_unscreened;
 using cleave::crack::parse_cracks;
 using cleave::crack::segment_crossing;
 using cleave::crack::Side;
+using cleave::crack::segment_crosses;
 using cleave::crack::signed_area;
 using json = nlohmann::json;
 
@@ -380,16 +382,34 @@ TEST(ParseCracks, PointsForm) {
   EXPECT_EQ(cs[1].id, 1);
   ASSERT_EQ(cs[0].points.size(), 3u);
   EXPECT_EQ(cs[0].points[2], v(2, 1));
-  EXPECT_EQ(cs[0].contact_law, Crack2D::ContactLaw::Frictionless);
+  EXPECT_EQ(cs[0].contact_law, cleave::crack::ContactLaw::Frictionless);
   EXPECT_EQ(cs[0].friction, 0.0);
   EXPECT_EQ(cs[0].lo, v(0, 0));
   EXPECT_EQ(cs[0].hi, v(2, 1));
-  EXPECT_EQ(cs[1].contact_law, Crack2D::ContactLaw::Friction);
+  EXPECT_EQ(cs[1].contact_law, cleave::crack::ContactLaw::Friction);
   EXPECT_EQ(cs[1].friction, 0.3);
-  EXPECT_EQ(cs[2].contact_law, Crack2D::ContactLaw::Stick);
+  EXPECT_EQ(cs[2].contact_law, cleave::crack::ContactLaw::Stick);
   EXPECT_TRUE(parse(json::array()).empty());
   // Straight-on and non-adjacent but far segments are fine.
   EXPECT_NO_THROW(parse(json::parse(R"([{"name": "s", "points": [[0, 0], [1, 0], [2, 0], [2, 1], [0, 1]]}])")));
+}
+
+// MPM's explicit crack is the same geometry type as peridynamics' crack surfaces: a polyline read
+// from the scene is a Surface<2> whose simplices are its segments and whose boundary (the fronts)
+// is its two end points, and the shared crossing test agrees with the MPM one on it.
+TEST(ParseCracks, APolylineCrackIsASurfaceWhoseFrontsAreItsEnds) {
+  const Crack2D c = parse(json::parse(R"([{"name": "a", "points": [[0, 0], [1, 0], [2, 1], [3, 1]]}])"), 1.0).at(0);
+  const cleave::crack::Surface<2>& s = c;
+  ASSERT_EQ(s.simplices.size(), 3u);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(s.simplices[k], (std::array<int32_t, 2>{k, k + 1}));
+  auto fronts = s.boundary();
+  ASSERT_EQ(fronts.size(), 2u);
+  std::sort(fronts.begin(), fronts.end());
+  EXPECT_EQ(fronts[0][0], 0);
+  EXPECT_EQ(fronts[1][0], 3);
+  for (const auto& [a, b] : {std::pair{v(0.5, -1), v(0.5, 1)}, std::pair{v(1.5, 2), v(1.6, -2)},
+                             std::pair{v(-1, -1), v(-1, 1)}, std::pair{v(2.5, 0), v(2.5, 0.9)}})
+    EXPECT_EQ(segment_crosses(s, a, b), crack_crossing(c, a, b) != Side::None);
 }
 
 TEST(ParseCracks, StraightFormSplitsIntoEqualSegments) {

@@ -18,7 +18,7 @@ CLEAVE_REGISTER_CONTACT_LAW("frictionless", 2, Frictionless, false)
 CLEAVE_REGISTER_CONTACT_LAW("friction", 3, Friction, true)
 CLEAVE_REGISTER_CONTACT_LAW("none", 4, None, false)
 
-const char* contact_law_name(Crack2D::ContactLaw law) {
+const char* contact_law_name(ContactLaw law) {
   const char* name = "?";
   ContactLaws::instance().each([&](const std::string& n, const ContactLawStyle& s) {
     if (s.law == law) name = n.c_str();  // the table's own key: lives as long as the program
@@ -132,7 +132,7 @@ void read_contact(const ObjectReader& cr, Crack2D& c) {
   }
   const std::string det = r.string_or("detection", "volume");
   if (det == "volume") {
-    c.detection = Crack2D::Detection::Volume;
+    c.detection = Detection::Volume;
     c.v_sep = r.number_or("v_sep", 0.9);
     c.v_contact = r.number_or("v_contact", 1.1);
     if (!(c.v_sep > 0.0 && c.v_sep < 1.0))
@@ -140,7 +140,7 @@ void read_contact(const ObjectReader& cr, Crack2D& c) {
     if (!(c.v_contact > 1.0 && std::isfinite(c.v_contact)))
       throw SceneError(r.at("v_contact"), "must be greater than 1 (relative nodal volume above which faces touch)");
   } else if (det == "displacement") {
-    c.detection = Crack2D::Detection::Displacement;
+    c.detection = Detection::Displacement;
     for (const char* k : {"v_sep", "v_contact"})
       if (r.has(k)) throw SceneError(r.at(k), "only valid with detection \"volume\"");
   } else {
@@ -149,15 +149,6 @@ void read_contact(const ObjectReader& cr, Crack2D& c) {
 }
 
 }  // namespace
-
-void Crack2D::update_extent() {
-  lo = Vec<2>::Constant(std::numeric_limits<double>::infinity());
-  hi = Vec<2>::Constant(-std::numeric_limits<double>::infinity());
-  for (const Vec<2>& p : points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-}
 
 bool segments_intersect(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c, const Vec<2>& d) {
   const int o1 = area_sign(a, b, c), o2 = area_sign(a, b, d);
@@ -200,6 +191,8 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
       throw SceneError(r.at("tips"), "unknown value \"" + c.tips + "\"; valid: auto, both, start, end, none");
     c.tip[0] = c.tips == "both" || c.tips == "start" || c.tips == "auto";
     c.tip[1] = c.tips == "both" || c.tips == "end" || c.tips == "auto";
+    for (std::size_t k = 0; k + 1 < c.points.size(); ++k)
+      c.simplices.push_back({static_cast<int32_t>(k), static_cast<int32_t>(k + 1)});
     c.update_extent();
     c.above = c.below = c.points;
     out.push_back(std::move(c));

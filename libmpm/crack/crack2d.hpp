@@ -1,6 +1,6 @@
-// 2D explicit cracks (seed 002, CRAMP): a crack is a polyline whose vertices are massless crack
-// particles; particle-node pairs whose connecting line crosses it use separate velocity fields.
-// This header holds the crack description, the whole-crack crossing test (with the appendix's
+// 2D explicit cracks (seed 002, CRAMP): a crack is a polyline (ExplicitCrack<2>, explicit_crack.hpp)
+// whose vertices are massless crack particles; particle-node pairs whose connecting line crosses it
+// use separate velocity fields. This header holds the whole-crack crossing test (with the appendix's
 // crack-extent screening) and the scene parser for the "cracks" key.
 #pragma once
 #include <cstdint>
@@ -14,38 +14,11 @@
 #include "libmpm/core/registry.hpp"
 #include "libmpm/core/types.hpp"
 #include "libmpm/crack/crossing.hpp"
+#include "libmpm/crack/explicit_crack.hpp"
 
 namespace cleave::crack {
 
-struct Crack2D {
-  std::string name;
-  int id = 0;                   // position in the scene's "cracks" array
-  std::vector<Vec<2>> points;   // polyline vertices (massless crack particles), SI; direction
-                                // points[0] -> points[1] -> ... defines above (left) / below (right)
-  // Contact law, scene names "stick" | "frictionless" | "friction" (Coulomb, mu) | "none" (faces may
-  // interpenetrate: for cracks known to stay open, and for the crack patch test against a half
-  // model, which has none). The names are registered in crack2d.cpp (ContactLaws below).
-  enum class ContactLaw { Stick, Frictionless, Friction, None } contact_law = ContactLaw::Frictionless;
-  double friction = 0.0;                     // Coulomb mu, only for "friction"
-  // Contact detection: seed 002's nodal volume (V_rel > v_contact: contact; V_rel < v_sep: apart;
-  // between: approaching faces are in contact) or seed 000's nodal displacement (approaching faces
-  // whose displacements overlap are in contact).
-  enum class Detection { Volume, Displacement } detection = Detection::Volume;
-  double v_sep = 0.9, v_contact = 1.1;
-  // Which end points are crack tips (where crack_tips computes J and K): "auto" (an end with
-  // material ahead of it; the scene reader decides), "both", "start" (points[0]), "end"
-  // (points.back()) or "none". tip[0] / tip[1]: start / end, resolved by the scene reader.
-  std::string tips = "auto";
-  bool tip[2] = {true, true};
-  // The surfaces above and below (crack particles moved with the velocity field of each side), in
-  // step with `points`; the crack opening displacement is above - below. Set from points when empty.
-  std::vector<Vec<2>> above, below;
-  // Extent of all vertices (Subtask 1). Default: empty (+inf / -inf), so that a crack whose extent
-  // was never computed screens every pair out; call update_extent() after moving the points.
-  Vec<2> lo = Vec<2>::Constant(std::numeric_limits<double>::infinity());
-  Vec<2> hi = Vec<2>::Constant(-std::numeric_limits<double>::infinity());
-  void update_extent();
-};
+using Crack2D = ExplicitCrack<2>;
 
 // Subtask 1: can the particle-node line touch the crack at all? True when the closed rectangle
 // spanned by particle and node intersects the closed extent [lo, hi]. Exact (comparisons only), so
@@ -119,7 +92,8 @@ inline uint32_t field_key(const std::vector<Crack2D>& cracks, const Vec<2>& x, c
 // "tips": "auto" | "both" | "start" | "end" | "none" (which ends are crack tips; default auto)
 // ("law" required inside "contact"; "mu" required and >= 0 for "friction", rejected otherwise;
 // default frictionless; detection default "volume" with v_sep 0.9 < 1 < v_contact 1.1, the two
-// critical volumes only valid with "volume"). above/below start equal to points. length_scale (scene length unit -> metres) multiplies coordinates and
+// critical volumes only valid with "volume"). above/below start equal to points; simplices are the
+// polyline's segments (i, i + 1). length_scale (scene length unit -> metres) multiplies coordinates and
 // segment_length. id = index in the array. Throws cleave::SceneError naming the key path (e.g.
 // "cracks[1].points[2]") for: not an array / not an object, missing name or points, empty or
 // duplicate name, both or neither of the two forms, fewer than 2 points, non-numeric or non-finite
@@ -136,13 +110,13 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
 // enum, once per pass; this table is the name <-> law mapping that the reader consults (so an
 // unknown name lists the registered ones) and the CLI prints. takes_mu: the law needs "mu".
 struct ContactLawStyle {
-  Crack2D::ContactLaw law;
+  ContactLaw law;
   bool takes_mu;
 };
 using ContactLaws = NameTable<ContactLawStyle>;
 
 // The scene name of a contact law ("stick", "frictionless", "friction", "none").
-const char* contact_law_name(Crack2D::ContactLaw law);
+const char* contact_law_name(ContactLaw law);
 
 // Exact closed-segment intersection test (shared end points count): used by the
 // self-intersection check and exposed for tests.
@@ -156,7 +130,6 @@ bool segments_intersect(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c, const
   [[maybe_unused]] const bool CLEAVE_REGISTRAR(cleave_contact_law_) =                   \
       ::cleave::crack::ContactLaws::instance().add(                                     \
           name,                                                                         \
-          ::cleave::crack::ContactLawStyle{::cleave::crack::Crack2D::ContactLaw::law,   \
-                                           takes_mu},                                   \
+          ::cleave::crack::ContactLawStyle{::cleave::crack::ContactLaw::law, takes_mu},     \
           rank);                                                                        \
   }

@@ -51,20 +51,10 @@ bool segment_crosses(const Surface<Dim>& s, const Vec<Dim>& a, const Vec<Dim>& b
   return false;
 }
 
-Surface<2> surface_of(const Crack2D& c) {
-  Surface<2> s;
-  s.name = c.name;
-  s.points = c.points;
-  for (std::size_t i = 0; i + 1 < c.points.size(); ++i)
-    s.simplices.push_back({static_cast<int32_t>(i), static_cast<int32_t>(i + 1)});
-  s.update_extent();
-  return s;
-}
-
 template <>
 std::vector<Surface<2>> read_surfaces<2>(const nlohmann::json& cracks, const std::string& key_path, double L) {
   std::vector<Surface<2>> out;
-  for (const auto& c : parse_cracks(cracks, key_path, L)) out.push_back(surface_of(c));
+  for (auto& c : parse_cracks(cracks, key_path, L)) out.push_back(static_cast<Surface<2>&&>(c));  // the geometry alone
   return out;
 }
 

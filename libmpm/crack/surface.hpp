@@ -1,8 +1,8 @@
 // A crack's geometry in any dimension: a (Dim-1)-simplex mesh -- the segments of a polyline in 2D,
 // triangles in 3D -- whose boundary is its fronts (the end points in 2D, the edges used by one
 // triangle only in 3D). One type and one crossing test for every method: peridynamics cuts the
-// bonds that cross it; MPM's 2D crack fields (crack2d.hpp) carry the same polyline plus the state of
-// its surfaces.
+// bonds that cross it; MPM's explicit cracks (explicit_crack.hpp) are surfaces with the state of
+// their faces added.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -15,8 +15,6 @@
 #include "libmpm/core/types.hpp"
 
 namespace cleave::crack {
-
-struct Crack2D;
 
 template <int Dim>
 struct Surface {
@@ -42,8 +40,5 @@ bool segment_crosses(const Surface<Dim>& s, const Vec<Dim>& a, const Vec<Dim>& b
 // (parse_cracks3d, surface3d.hpp). SceneError names the key path.
 template <int Dim>
 std::vector<Surface<Dim>> read_surfaces(const nlohmann::json& cracks, const std::string& key_path, double length_scale);
-
-// The polyline of a 2D MPM crack as a surface.
-Surface<2> surface_of(const Crack2D& c);
 
 }  // namespace cleave::crack

@@ -46,7 +46,7 @@ class CrackFields : crack_fields::CrackContact<2, SF> {
   using Base = crack_fields::CrackContact<Dim, SF>;
   using St = Stencil<2, SF>;
   using V = Vec<2>;
-  using Law = crack::Crack2D::ContactLaw;
+  using Law = crack::ContactLaw;
 
  public:
   using Base::kExtra;  // extra fields per node: four in all
@@ -61,7 +61,7 @@ class CrackFields : crack_fields::CrackContact<2, SF> {
       for (std::size_t p = b.first; p < b.first + b.count; ++p) area0_[p] = P_.volume0[p] / b.thickness;
     for (const auto& c : cracks_) {
       if (c.contact_law == Law::None) continue;
-      (c.detection == crack::Crack2D::Detection::Volume ? need_volume_ : need_disp_) = true;
+      (c.detection == crack::Detection::Volume ? need_volume_ : need_disp_) = true;
     }
   }
 

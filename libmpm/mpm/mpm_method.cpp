@@ -43,9 +43,9 @@ class MpmMethod final : public Method<Dim> {
     for (const auto& c : m.cracks)
       out.push_back(format("crack '%s': %zu segments, contact %s%s, %s detection", c.name.c_str(), c.points.size() - 1,
                            crack::contact_law_name(c.contact_law),
-                           c.contact_law == crack::Crack2D::ContactLaw::Friction
+                           c.contact_law == crack::ContactLaw::Friction
                                ? (" mu=" + std::to_string(c.friction)).c_str() : "",
-                           c.detection == crack::Crack2D::Detection::Volume ? "volume" : "displacement"));
+                           c.detection == crack::Detection::Volume ? "volume" : "displacement"));
     out.push_back(format("output: every %.6g s (%zu fields), global.csv every %.6g s", m.output.interval,
                          m.output.fields.size(), m.output.global_interval));
     if (m.crack_tips) {

@@ -59,7 +59,7 @@ class CrackContact : public CrackMotion<Dim, SF> {
           const V dv = pa / ma - pb / mb;
           const double approach = dv.dot(nrm);  // > 0: the faces move towards each other
           bool touching;
-          if (c.detection == crack::Crack2D::Detection::Volume) {
+          if (c.detection == crack::Detection::Volume) {
             // Eq. 10. An opening g takes about g h (1 - d/h) from the volume of a node at distance d
             // from the crack, so approaching faces count as touching while g <= (1 - v_sep) h / (1 - d/h):
             // the gap at which they stop depends on where the crack lies among the nodes (0.1 cell on
@@ -109,7 +109,7 @@ class CrackContact : public CrackMotion<Dim, SF> {
   using Base::disp0_, Base::disp_, Base::force, Base::G_, Base::is_tip, Base::kExtra, Base::left_normal;
   using Base::linear_nodes, Base::mass, Base::momentum, Base::node_block_, Base::normal_sum;
   using Base::parallel_points, Base::side_fields, Base::side_velocity, Base::volume_;
-  using Law = crack::Crack2D::ContactLaw;
+  using Law = crack::ContactLaw;
 
   CrackContact(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin) : Base(m, grid, kin) {}
 

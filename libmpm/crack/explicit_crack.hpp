@@ -1,0 +1,50 @@
+// An explicit crack (seed 002, CRAMP) in any dimension: the crack's geometry as a Surface<Dim> (a
+// polyline in 2D, a triangle mesh in 3D; its boundary is the fronts) plus what the MPM crack
+// fields need: contact law and detection, which fronts are crack tips, and the two faces (above /
+// below) that the crack's particles carry. Peridynamics reads the same scene key into plain
+// surfaces; MPM builds these. Only the 2D crack fields exist so far (crack2d.hpp: the polyline
+// reader and crossing test; libmpm/mpm/crack_fields/).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "libmpm/core/types.hpp"
+#include "libmpm/crack/surface.hpp"
+
+namespace cleave::crack {
+
+// Contact law between the faces, scene names "stick" | "frictionless" | "friction" (Coulomb, mu) |
+// "none" (faces may interpenetrate: for cracks known to stay open, and for the crack patch test
+// against a half model, which has none). The names are registered in crack2d.cpp (ContactLaws).
+enum class ContactLaw { Stick, Frictionless, Friction, None };
+// Contact detection: seed 002's nodal volume (V_rel > v_contact: contact; V_rel < v_sep: apart;
+// between: approaching faces are in contact) or seed 000's nodal displacement (approaching faces
+// whose displacements overlap are in contact).
+enum class Detection { Volume, Displacement };
+
+template <int Dim>
+struct ExplicitCrack : Surface<Dim> {
+  using ContactLaw = crack::ContactLaw;
+  using Detection = crack::Detection;
+
+  int id = 0;  // position in the scene's "cracks" array
+  // points (Surface): vertices (massless crack particles), SI; in 2D the direction points[0] ->
+  // points[1] -> ... defines above (left) / below (right).
+  ContactLaw contact_law = ContactLaw::Frictionless;
+  double friction = 0.0;  // Coulomb mu, only for "friction"
+  Detection detection = Detection::Volume;
+  double v_sep = 0.9, v_contact = 1.1;
+  // Which fronts are crack tips (where crack_tips computes J and K): the scene's "auto" (a front
+  // with material ahead of it; the scene reader decides), "both", "start", "end" or "none". One
+  // flag per front; 2D: tip[0] is points[0], tip[1] is points.back().
+  std::string tips = "auto";
+  std::vector<uint8_t> tip = std::vector<uint8_t>(2, 1);
+  // The faces above and below (crack particles moved with the velocity field of each side), in
+  // step with `points`; the crack opening displacement is above - below. Set from points when empty.
+  std::vector<Vec<Dim>> above, below;
+  // Extent (Surface::lo, hi) of all vertices: empty (+inf / -inf) until update_extent(), so that a
+  // crack whose extent was never computed screens every pair out; call it after moving the points.
+};
+
+}  // namespace cleave::crack
