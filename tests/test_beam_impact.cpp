@@ -19,7 +19,7 @@ struct EnergyRecord {
 EnergyRecord run_scheme(const std::string& scheme, const std::string& shape, double cfl, double end_time) {
   nlohmann::json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/beam_impact.json");
   s["mpm"] = {{"shape_function", shape}, {"stress_update", scheme}};
-  s["grid"]["cell_size"] = 1.0;  // mm: 2 428 particles, coarse enough for CI
+  s["resolution"] = 1.0;  // mm: 2 428 particles, coarse enough for CI
   s["time"] = {{"end", end_time}, {"cfl", cfl}};
   Model<2> m = build_model<2>(s);
   auto st = make_stepper<2>(m);

@@ -249,7 +249,7 @@ json small_cracked_plate() {
 TEST(CrackTipScene, ReadsTheKeyAndRejectsBadValues) {
   Model<2> m = build_model<2>(small_cracked_plate());
   ASSERT_TRUE(m.crack_tips.has_value());
-  EXPECT_DOUBLE_EQ(m.crack_tips->interval, 0.5e-3);
+  EXPECT_DOUBLE_EQ(m.output.tip_interval, 0.5e-3);
   EXPECT_EQ(m.crack_tips->points, 16);
   EXPECT_FALSE(m.cracks[0].tip[0]);  // the mouth lies outside the plate
   EXPECT_TRUE(m.cracks[0].tip[1]);
@@ -318,7 +318,7 @@ TEST(CrackTipOutput, WritesCrackTipsCsvAndTipValuesOnTheCrackFrames) {
   std::ifstream in(out / "crack_tips.csv");
   std::string header, line, last;
   std::getline(in, header);
-  EXPECT_EQ(header, "time,crack,tip,x,y,J1,J2,KI,KII");
+  EXPECT_EQ(header, "time,crack,tip,x,y,speed,J1,J2,KI,KII");  // method/tip_table.hpp
   int rows = 0;
   while (std::getline(in, line)) ++rows, last = line;
   EXPECT_EQ(rows, 5);  // t = 0, 0.5, 1, 1.5, 2 ms: one tip
@@ -328,12 +328,13 @@ TEST(CrackTipOutput, WritesCrackTipsCsvAndTipValuesOnTheCrackFrames) {
     if (q == std::string::npos) q = last.size();
     v.push_back(std::stod(last.substr(p, q - p)));
   }
-  ASSERT_EQ(v.size(), 9u);
+  ASSERT_EQ(v.size(), 10u);
   EXPECT_NEAR(v[0], 2e-3, m.dt);  // the last step ends at or just past time.end
   EXPECT_EQ(v[1], 0.0);  // crack 0
   EXPECT_EQ(v[2], 1.0);  // its end tip
-  EXPECT_GT(v[5], 0.0);  // the halves fly apart: the crack opens, J1 > 0 and K_I > 0
-  EXPECT_GT(v[7], 0.0);
+  EXPECT_GE(v[5], 0.0);  // the tip's speed
+  EXPECT_GT(v[6], 0.0);  // the halves fly apart: the crack opens, J1 > 0 and K_I > 0
+  EXPECT_GT(v[8], 0.0);
   std::ifstream vtu(out / "cracks_000002.vtu");
   const std::string text((std::istreambuf_iterator<char>(vtu)), std::istreambuf_iterator<char>());
   for (const char* name : {"\"J1\"", "\"J2\"", "\"KI\"", "\"KII\""}) EXPECT_NE(text.find(name), std::string::npos) << name;
@@ -427,7 +428,8 @@ TEST(CrackTipDcb, StaticJMatchesBeamTheoryAndTheComplianceDerivative) {
 // 4 cells lie in the arm's singular-field region; the 2 mm scene misses (3.6 %, recorded).
 TEST(CrackTipDcb, StaticJIsPathIndependent) {
   json s = scene("dcb_crack.json");
-  s["grid"] = {{"cell_size", 1}, {"min", {-5.5, -22}}, {"max", {104.5, 22}}};
+  s["resolution"] = 1;
+  s["grid"] = {{"min", {-5.5, -22}}, {"max", {104.5, 22}}};
   s["cracks"][0]["segment_length"] = 1;
   Model<2> m = build_model<2>(s);
   auto st = make_stepper<2>(m);

@@ -53,7 +53,7 @@ TEST(Determinism, CrackedDcbOneVsTwoThreads) {
   // and multi-field nodes run in parallel (more than 128 of each: 209 crack points, segments of half
   // a cell).
   nlohmann::json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");
-  s["grid"]["cell_size"] = 0.5;
+  s["resolution"] = 0.5;
   s["cracks"][0]["segment_length"] = 0.25;
   s["bodies"][0]["particles_per_cell"] = 4;
   s["mpm"]["shape_function"] = "ugimp";

@@ -169,7 +169,7 @@ TEST(PdValidation, EnergyConserved3D) { energy_conserved<3>(); }
 // material (nu = 1/3: c_R = 0.9194 c_s, from the Rayleigh equation with nu' = nu / (1 + nu) = 1/4).
 TEST(PdValidation, BranchingPlateCoarse) {
   json s = load_scene_file(fs::path(CLEAVE_SOURCE_DIR) / "data/scenes/pd_branching.json");
-  s["peridynamics"]["spacing"] = 1;
+  s["resolution"] = 1;
   s["time"]["dt"] = 0.1;
   s["output"]["interval"] = 46;  // first and last frame only
   auto m = build_pd_system<2>(s);
@@ -234,7 +234,7 @@ TEST(PdSolver, DeterministicForOneAndTwoThreads) {
 // A stopped run resumed from its checkpoint ends in the same state as an uninterrupted run.
 TEST(PdRun, ResumeFromCheckpointIsExact) {
   json s = load_scene_file(fs::path(CLEAVE_SOURCE_DIR) / "data/scenes/pd_branching.json");
-  s["peridynamics"]["spacing"] = 1;
+  s["resolution"] = 1;
   s["time"] = {{"end", 16}, {"dt", 0.1}};
   s["output"] = {{"interval", 4}, {"global_interval", 1}};
   const fs::path base = fs::path(CLEAVE_BINARY_DIR) / "test_out";
@@ -390,6 +390,13 @@ TEST(PdScene, ErrorsNameTheKeyPath) {
   s = base;
   s["grid"] = {{"cell_size", 1}};
   EXPECT_EQ(key_of(s), "grid");
+  s = base;  // the one discretisation key: "resolution" is the lattice spacing, exclusive with the own key
+  s["resolution"] = s["peridynamics"]["spacing"];
+  EXPECT_EQ(key_of(s), "peridynamics.spacing");
+  s["peridynamics"].erase("spacing");
+  EXPECT_EQ(build_pd_system<2>(s).dx, build_pd_system<2>(base).dx);
+  s.erase("resolution");
+  EXPECT_EQ(key_of(s), "resolution");
   s = base;
   s["method"] = "sph";
   EXPECT_THROW(SceneMethod::build(s), SceneError);

@@ -110,11 +110,31 @@ TEST(SceneErrors, UnknownTopLevelKey) {
 }
 
 TEST(SceneErrors, MissingRequiredSections) {
-  for (const char* key : {"grid", "materials", "bodies", "time", "analysis"}) {
+  for (const char* key : {"materials", "bodies", "time", "analysis"}) {
     auto s = scene2d();
     s.erase(key);
     EXPECT_SCENE_ERROR_2D(s, key, "missing");
   }
+  auto s = scene2d();  // the discretisation length: "resolution" or the method's own grid.cell_size
+  s.erase("grid");
+  EXPECT_SCENE_ERROR_2D(s, "resolution", "missing");
+}
+
+// "resolution" is the one discretisation key of every method: MPM's cell size, read in the scene's
+// unit; the method's own spelling is accepted in its place but not beside it.
+TEST(SceneErrors, ResolutionIsTheCellSizeAndExcludesGridCellSize) {
+  auto s = scene2d();
+  const double h = s["grid"]["cell_size"];
+  s["grid"].erase("cell_size");
+  s["resolution"] = h;
+  EXPECT_EQ(cleave::build_model<2>(s).grid.h, h);
+  s["grid"]["cell_size"] = h;
+  EXPECT_SCENE_ERROR_2D(s, "grid.cell_size", "not both");
+  s["grid"].erase("cell_size");
+  s["resolution"] = -h;
+  EXPECT_SCENE_ERROR_2D(s, "resolution", "positive");
+  s["resolution"] = "fine";
+  EXPECT_SCENE_ERROR_2D(s, "resolution", "number");
 }
 
 TEST(SceneErrors, UnknownUnitsKind) {
@@ -348,7 +368,7 @@ TEST(SceneErrors, GridCellSize) {
   s["grid"]["cell_size"] = -0.01;
   EXPECT_SCENE_ERROR_2D(s, "grid.cell_size", "positive");
   s["grid"].erase("cell_size");
-  EXPECT_SCENE_ERROR_2D(s, "grid.cell_size", "missing");
+  EXPECT_SCENE_ERROR_2D(s, "resolution", "missing");
 }
 
 TEST(SceneErrors, GridMarginCells) {

@@ -9,7 +9,7 @@ namespace {
 
 TEST(SceneWarnings, MassContrastWithLinearShapeFunctions) {
   nlohmann::json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/beam_impact.json");
-  s["grid"]["cell_size"] = 1.0;
+  s["resolution"] = 1.0;
   s["mpm"]["shape_function"] = "linear";
   const Model<2> lin = build_model<2>(s);
   ASSERT_EQ(lin.warnings.size(), 1u);

@@ -50,7 +50,7 @@ class RenderCli : public ::testing::Test {
     fs::create_directories(dir_);
     // The Brazilian disk at 1 mm cells, a short damped run: ~1 300 particles, 7 frames.
     const auto r = run(std::string("run ") + CLEAVE_SOURCE_DIR "/data/scenes/brazilian_disk.json --quiet --threads 1 " +
-                           "--set grid.cell_size=1 --set time.end=0.3 --out " + (dir_ / "disk").string(),
+                           "--set resolution=1 --set time.end=0.3 --out " + (dir_ / "disk").string(),
                        dir_);
     ASSERT_EQ(r.code, 0) << r.err;
   }

@@ -54,7 +54,7 @@ Options:
   --quiet        no progress line
   --set K=V      override one scene value before validation; K is a key path as in error
                  messages (mpm.stress_update, bodies[1].velocity), V is JSON or a plain string:
-                 --set mpm.stress_update=USL --set grid.cell_size=1 --set 'time.end=2.5'
+                 --set mpm.stress_update=USL --set resolution=1 --set 'time.end=2.5'
   --help         this text
   --version      program version
 

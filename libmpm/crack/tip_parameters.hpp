@@ -17,7 +17,6 @@ struct TipSettings {
   double radius = 2.0;       // cells: the circle's radius, or half the side of the square
   int points = 16;           // integration points on the contour (n_J)
   bool volume_term = false;  // eq. 33 (contour + volume) instead of eq. 32 (contour only)
-  double interval = 0.0;     // s between rows of crack_tips.csv
 };
 
 // Crack-tip frame: e1 along the crack, pointing ahead of the tip; e2 its left normal. The "+" face

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "libmpm/core/error.hpp"
 #include "libmpm/io/csv_writer.hpp"
@@ -26,8 +28,9 @@ uint64_t scene_hash(const nlohmann::json& scene) {
 namespace {
 
 // checkpoint.bin: this header, the loop's counters, then the method's state (Method::save).
-// Format 4 is the first shared by every method; formats 1-3 were per method.
-constexpr char kMagic[8] = {'C', 'L', 'V', 'E', 'C', 'K', 'P', '4'};
+// Format 4 is the first shared by every method (formats 1-3 were per method); 5 adds the crack-tip
+// table's last records (method/tip_table.hpp) to every method's state.
+constexpr char kMagic[8] = {'C', 'L', 'V', 'E', 'C', 'K', 'P', '5'};
 
 struct LoopCounters {
   uint64_t scene_hash = 0;
@@ -63,7 +66,8 @@ LoopCounters read_checkpoint(const fs::path& file, Method<Dim>& method, uint64_t
   if (!i || std::memcmp(magic, kMagic, 7) != 0) throw std::runtime_error(file.string() + ": not a Cleave checkpoint");
   if (magic[7] != kMagic[7])
     throw std::runtime_error(file.string() + ": written by an earlier Cleave (checkpoint format " +
-                             std::string(1, magic[7]) + "; this version reads format 4); run without --resume");
+                             std::string(1, magic[7]) + "; this version reads format " +
+                             std::string(1, kMagic[7]) + "); run without --resume");
   i.read(name, sizeof name);
   name[sizeof name - 1] = 0;
   StateReader r(i, file.string());
@@ -175,21 +179,28 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
     const bool last = t >= set.end_time - eps;
     if (opt.log)
       if (const std::string w = method.take_warning(); !w.empty()) opt.log(w);
-    if (problem) {
-      record_global();
-      abort_run(at(t) + problem.what);
-    }
-    if (t >= ck.next_global_time - eps || last) {
+    // The checks: the energy's at every global.csv row, and at a step with a problem too; every
+    // one that trips is reported, the energy's first, then the step's problem.
+    const bool global_due = t >= ck.next_global_time - eps || last;
+    if (problem || global_due) {
       const GlobalRow g = record_global();
-      ck.next_global_time += set.output.global_interval;
-      if (!std::isfinite(g.total_energy)) abort_run(at(t) + "energy is not finite");
+      if (global_due) ck.next_global_time += set.output.global_interval;
+      std::vector<std::string> tripped;
       const double ref = std::max({sum.first_energy, std::fabs(g.external_work), 1e-300});
-      if (g.total_energy > set.energy_blowup_factor * ref && g.total_energy > 1e-12) {
+      if (!std::isfinite(g.total_energy)) {
+        tripped.push_back("energy is not finite");
+      } else if (g.total_energy > set.energy_blowup_factor * ref && g.total_energy > 1e-12) {
         std::ostringstream msg;
         // Name the fastest point: where the blow-up is.
-        msg << at(t) << "energy blow-up, total energy " << g.total_energy << " J exceeds " << set.energy_blowup_factor
+        msg << "energy blow-up, total energy " << g.total_energy << " J exceeds " << set.energy_blowup_factor
             << " x the reference " << ref << " J; fastest " << method.fastest_point();
-        abort_run(msg.str());
+        tripped.push_back(msg.str());
+      }
+      if (problem) tripped.push_back(problem.what);
+      if (!tripped.empty()) {
+        std::string msg = at(t) + tripped[0];
+        for (std::size_t k = 1; k < tripped.size(); ++k) msg += "; also " + tripped[k];
+        abort_run(msg);
       }
     }
     if (tips && (t >= ck.next_tip_time - eps || last)) {

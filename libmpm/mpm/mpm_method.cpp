@@ -8,6 +8,7 @@
 #include "libmpm/io/crack_output.hpp"
 #include "libmpm/mpm/particle_output.hpp"
 #include "libmpm/method/describe.hpp"
+#include "libmpm/method/tip_table.hpp"
 #include "libmpm/mpm/mpm_method.hpp"
 #include "libmpm/mpm/mpm_scene.hpp"
 #include "libmpm/mpm/mpm_step.hpp"
@@ -55,7 +56,7 @@ class MpmMethod final : public Method<Dim> {
       out.push_back(format("crack tips: %d, J by %s on a %s of %.6g cells (%d points), crack_tips.csv every %.6g s",
                            tips, t.volume_term ? "eq. 33 (contour + volume)" : "eq. 32 (contour)",
                            t.contour == crack::TipSettings::Contour::Circle ? "circle" : "square", t.radius, t.points,
-                           t.interval));
+                           m.output.tip_interval));
     }
     return out;
   }
@@ -105,14 +106,17 @@ class MpmMethod final : public Method<Dim> {
 
   std::vector<std::string> tip_columns() const override {
     if (!m_.crack_tips) return {};
-    return {"time", "crack", "tip", "x", "y", "J1", "J2", "KI", "KII"};
+    return table_.columns();
   }
   std::vector<std::vector<double>> tip_rows() override {
     std::vector<std::vector<double>> rows;
     if (!m_.crack_tips) return rows;
     const double t = stepper_->time();
-    for (const auto& r : tips_now())
-      rows.push_back({t, double(r.crack), double(r.end), r.x.x(), r.x.y(), r.J1, r.J2, r.KI, r.KII});
+    for (const auto& r : tips_now()) {
+      Vec<Dim> x = Vec<Dim>::Zero();  // tips are of 2D cracks (the only explicit cracks built so far)
+      x.template head<2>() = r.x;
+      rows.push_back(table_.row(t, r.crack, r.end, x, {r.J1, r.J2, r.KI, r.KII}));
+    }
     return rows;
   }
 
@@ -123,6 +127,7 @@ class MpmMethod final : public Method<Dim> {
     const auto& P = m_.particles;
     w.array(P.x), w.array(P.v), w.array(P.u), w.array(P.stress), w.array(P.strain), w.array(P.rotation);
     for (const auto& c : m_.cracks) w.array(c.points), w.array(c.above), w.array(c.below);
+    table_.save(w);
   }
   void load(StateReader& r) override {
     double t = 0, work = 0;
@@ -136,6 +141,7 @@ class MpmMethod final : public Method<Dim> {
       r.array(c.points, "crack points"), r.array(c.above, "crack points"), r.array(c.below, "crack points");
       c.update_extent();
     }
+    table_.load(r);
     stepper_->restore(t, step, work);
   }
 
@@ -155,6 +161,7 @@ class MpmMethod final : public Method<Dim> {
   Model<Dim>& m_;
   std::unique_ptr<Stepper<Dim>> stepper_;
   std::vector<crack::TipRecord> tips_;
+  TipTable<Dim> table_{m_.cracks.size(), 2, {"J1", "J2", "KI", "KII"}};  // crack_tips.csv; 2D: two ends
   long tips_step_ = -1;  // step of tips_; -1: none yet
 };
 

@@ -10,6 +10,7 @@
 #include "libmpm/core/json_reader.hpp"
 #include "libmpm/core/units.hpp"
 #include "libmpm/scene/loads.hpp"
+#include "libmpm/scene/resolution.hpp"
 #include "libmpm/scene/sections.hpp"
 
 namespace cleave {
@@ -125,12 +126,17 @@ static void warn_contour_meets_cracks(const Model<2>& m, const crack::TipSetting
     }
 }
 
-static crack::TipSettings read_crack_tips(const json& scene, const Model<2>& m, double time_scale,
+static crack::TipSettings read_crack_tips(const json& scene, Model<2>& m, double time_scale,
                                           std::vector<std::string>& warnings) {
   const ObjectReader r(scene["crack_tips"], "crack_tips", {"interval", "contour", "radius", "points", "volume_term"});
   if (m.cracks.empty()) throw SceneError("crack_tips", "the scene declares no cracks (key \"cracks\")");
   crack::TipSettings s;
-  s.interval = r.positive_or("interval", m.output.global_interval, time_scale);
+  // crack_tips.interval: the older spelling of output.tip_interval, the key of every method.
+  if (r.has("interval")) {
+    if (scene.contains("output") && scene["output"].contains("tip_interval"))
+      throw SceneError(r.at("interval"), "give output.tip_interval (or crack_tips.interval), not both");
+    m.output.tip_interval = r.positive("interval", time_scale);
+  }
   const std::string shape = r.string_or("contour", "circle");
   if (shape == "rectangle") s.contour = crack::TipSettings::Contour::Rectangle;
   else if (shape != "circle") throw SceneError(r.at("contour"), "unknown contour \"" + shape + "\"; valid: circle, rectangle");
@@ -205,7 +211,7 @@ static TractionLoad<Dim> resolve_traction(const Model<Dim>& m, const std::vector
 
 template <int Dim>
 Model<Dim> build_model(const json& scene) {
-  ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "grid", "mpm", "materials",
+  ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "resolution", "grid", "mpm", "materials",
                                "bodies", "loads", "cracks", "crack_tips", "damping", "time", "output", "checks"});
   if (top.has("method") && top.string("method") != "mpm")  // peridynamics: libmpm/pd/pd_scene.cpp
     throw SceneError("method", "build_model reads MPM scenes only (\"method\": \"mpm\")");
@@ -270,9 +276,10 @@ Model<Dim> build_model(const json& scene) {
 
   // --- grid -----------------------------------------------------------------------------------
   {
-    if (!top.has("grid")) throw SceneError("grid", "missing (needs at least cell_size)");
-    ObjectReader r(scene["grid"], "grid", {"cell_size", "min", "max", "margin_cells"});
-    const double h = r.positive("cell_size", L);
+    static const json no_grid = json::object();  // every grid key is optional with "resolution"
+    ObjectReader r(top.has("grid") ? scene["grid"] : no_grid, "grid", {"cell_size", "min", "max", "margin_cells"});
+    const double h = scene::read_resolution(scene, "grid", "cell_size", "the grid's cell size", L);
+    const std::string h_key = top.has("resolution") ? "resolution" : "grid.cell_size";
     m.grid.h = h;
     if (r.has("min") != r.has("max"))
       throw SceneError(r.has("min") ? "grid.max" : "grid.min", "give both grid.min and grid.max, or neither");
@@ -282,7 +289,7 @@ Model<Dim> build_model(const json& scene) {
       const Vec<Dim> lo = r.vec<Dim>("min", L), hi = r.vec<Dim>("max", L);
       for (int d = 0; d < Dim; ++d) {
         const double cells = (hi[d] - lo[d]) / h;
-        if (cells > 1e8) throw SceneError("grid.cell_size", "the grid would have more than 1e8 cells along one axis");
+        if (cells > 1e8) throw SceneError(h_key, "the grid would have more than 1e8 cells along one axis");
         if (!(cells >= 1.0)) throw SceneError("grid.max", "grid.max must exceed grid.min by at least one cell");
         if (std::fabs(cells - std::round(cells)) > 1e-6)
           throw SceneError("grid.max", "grid.max - grid.min must be a whole number of cells along axis " +
@@ -297,14 +304,14 @@ Model<Dim> build_model(const json& scene) {
       for (int d = 0; d < Dim; ++d) {
         const double lo = std::floor(all.lo[d] / h + 1e-9) - margin;
         const double hi = std::ceil(all.hi[d] / h - 1e-9) + margin;
-        if (hi - lo > 1e8) throw SceneError("grid.cell_size", "the grid would have more than 1e8 cells along one axis");
+        if (hi - lo > 1e8) throw SceneError(h_key, "the grid would have more than 1e8 cells along one axis");
         m.grid.origin[d] = lo * h;
         m.grid.nodes[d] = static_cast<int>(hi - lo) + 1;
       }
     }
     double nodes = 1;
     for (int d = 0; d < Dim; ++d) nodes *= m.grid.nodes[d];
-    if (nodes > 2e9) throw SceneError("grid.cell_size", "the grid would have more than 2e9 nodes");
+    if (nodes > 2e9) throw SceneError(h_key, "the grid would have more than 2e9 nodes");
   }
 
   // --- particles --------------------------------------------------------------------------------
@@ -473,13 +480,12 @@ Model<Dim> build_model(const json& scene) {
     scene::read_time(scene, units, m.grid.h / (cmax + vmax), "cell / (wave speed + particle speed)",
                      "no material has a wave speed", m);
   }
-  scene::read_output(scene, units, kFieldNames, "", false, m);
+  scene::read_output(scene, units, kFieldNames, "", top.has("crack_tips"), m);
   if (top.has("crack_tips")) {
     if constexpr (Dim == 3)
       throw SceneError("crack_tips", "crack-tip parameters are computed for 2D cracks only");
     else
       m.crack_tips = read_crack_tips(scene, m, units.factor(Quantity::Time), m.warnings);
-    m.output.tip_interval = m.crack_tips->interval;
   }
   // Bodies that share grid nodes with very different mass per particle make the node's effective
   // wave speed exceed the material estimate; linear shape functions then need a smaller CFL

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "libmpm/material/linear_elastic.hpp"
+#include "libmpm/method/describe.hpp"
 #include "libmpm/mpm/crack_fields.hpp"
 #include "libmpm/mpm/crack_tip_eval.hpp"
 #include "libmpm/core/parallel.hpp"
@@ -137,6 +138,9 @@ class MpmStepper final : public Stepper<Dim> {
     external_work_ += 0.5 * dt * (traction_power_before + traction_power());
     time_ += dt;
     ++step_;
+    if (also_left_ >= 0)
+      problem.what += "; also particle " + std::to_string(also_left_) + " at " + position_text<Dim>(P_.x[also_left_]) +
+                      " left the grid";
     return problem;
   }
 
@@ -364,14 +368,18 @@ class MpmStepper final : public Stepper<Dim> {
   // later stress update still needs the start-of-step shape functions, after it. With
   // reextrapolate, the new particle momenta go straight back to the grid (Task 6c, eq. 31).
   StepProblem task5_update_particles(double dt, bool reextrapolate, bool move) {
-    std::atomic<long> bad{std::numeric_limits<long>::max()};
-    // The lowest-numbered bad particle is reported, whatever the thread count.
-    auto finish = [&](std::size_t p, const Vec<Dim>& dx) CLEAVE_INLINE {
-      if (!P_.v[p].allFinite() || !stencil_inside<Dim, SF>(G_, inv_h_, P_.x[p] + dx)) {
-        long cur = bad.load();
-        while (static_cast<long>(p) < cur && !bad.compare_exchange_weak(cur, static_cast<long>(p))) {
-        }
+    constexpr long none = std::numeric_limits<long>::max();
+    // Two checks: a velocity that is not finite, and (else) a particle that left the grid. Of each,
+    // the lowest-numbered particle is reported, whatever the thread count.
+    std::atomic<long> bad{none}, left{none};
+    auto lowest = [](std::atomic<long>& a, long p) CLEAVE_INLINE {
+      long cur = a.load();
+      while (p < cur && !a.compare_exchange_weak(cur, p)) {
       }
+    };
+    auto finish = [&](std::size_t p, const Vec<Dim>& dx) CLEAVE_INLINE {
+      if (!P_.v[p].allFinite()) lowest(bad, static_cast<long>(p));
+      else if (!stencil_inside<Dim, SF>(G_, inv_h_, P_.x[p] + dx)) lowest(left, static_cast<long>(p));
       if (move) {
         P_.x[p] += dx;
         P_.u[p] += dx;
@@ -428,9 +436,12 @@ class MpmStepper final : public Stepper<Dim> {
         else gather_pass(body, [](std::size_t) {});
       }
     }
-    const long b = bad.load();
-    if (b == std::numeric_limits<long>::max()) return {};
-    return {b, P_.v[b].allFinite() ? "left the grid" : "velocity is not finite (NaN/Inf)"};
+    // Both checks tripped: the second particle is named once the step has moved it (step()).
+    const long b = bad.load(), l = left.load();
+    also_left_ = b != none && l != none ? l : -1;
+    if (b != none) return {b, "velocity is not finite (NaN/Inf)"};
+    if (l != none) return {l, "left the grid"};
+    return {};
   }
 
   void apply_momentum_conditions() {
@@ -498,6 +509,7 @@ class MpmStepper final : public Stepper<Dim> {
   SchemeTraits traits_;
   double time_ = 0.0, external_work_ = 0.0;
   long step_ = 0;
+  long also_left_ = -1;  // a particle that left the grid in a step that also found a non-finite velocity
   int ftz_threads_ = 0;
   bool all_linear_elastic_ = false;
 };

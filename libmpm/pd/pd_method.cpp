@@ -13,6 +13,7 @@
 
 #include "libmpm/io/particle_fields.hpp"
 #include "libmpm/method/describe.hpp"
+#include "libmpm/method/tip_table.hpp"
 #include "libmpm/io/point_set.hpp"
 #include "libmpm/pd/pd_scene.hpp"
 #include "libmpm/pd/pd_solver.hpp"
@@ -66,8 +67,8 @@ template <int Dim>
 class PdMethod final : public Method<Dim> {
  public:
   explicit PdMethod(const nlohmann::json& scene)
-      : owned_(std::make_unique<PdSystem<Dim>>(build_pd_system<Dim>(scene))), m_(*owned_), solver_(m_) { init(); }
-  explicit PdMethod(PdSystem<Dim>& m) : m_(m), solver_(m_) { init(); }
+      : owned_(std::make_unique<PdSystem<Dim>>(build_pd_system<Dim>(scene))), m_(*owned_), solver_(m_) {}
+  explicit PdMethod(PdSystem<Dim>& m) : m_(m), solver_(m_) {}
 
   const char* name() const override { return "peridynamics"; }
   const RunSettings& settings() const override { return m_; }
@@ -124,31 +125,15 @@ class PdMethod final : public Method<Dim> {
   std::vector<std::string> frame_series() const override { return {"particles"}; }
   io::PointSet frame(std::size_t) override { return pd_point_set<Dim>(m_, solver_); }
 
-  std::vector<std::string> tip_columns() const override {
-    std::vector<std::string> c = {"time", "crack", "tip", "x", "y"};
-    if (Dim == 3) c.push_back("z");
-    c.push_back("speed");
-    return c;
-  }
+  std::vector<std::string> tip_columns() const override { return tips_.columns(); }
   // The tracked tips now; the first branching of a 2D crack is recorded for run.json.
   std::vector<std::vector<double>> tip_rows() override {
     std::vector<std::vector<double>> rows;
     const auto phi = solver_.damage();
     const double t = solver_.time();
-    for (std::size_t k = 0; k < m_.trackers.size(); ++k) {
-      const auto tip = find_tip<Dim>(m_, phi, m_.trackers[k], m_.tip_threshold);
-      if (!tip) continue;
-      const Vec<Dim> x = m_.points.x0[*tip];
-      // Seed 003: v_i = |x_i - x_{i-1}| / (t_i - t_{i-1}) between successive tip records.
-      const double speed = last_tip_time_[k] >= 0 && t > last_tip_time_[k]
-                               ? (x - last_tip_[k]).norm() / (t - last_tip_time_[k]) : 0.0;
-      std::vector<double> row = {t, double(k), 0.0};
-      for (int d = 0; d < Dim; ++d) row.push_back(x[d]);
-      row.push_back(speed);
-      rows.push_back(std::move(row));
-      last_tip_[k] = x;
-      last_tip_time_[k] = t;
-    }
+    for (std::size_t k = 0; k < m_.trackers.size(); ++k)
+      if (const auto tip = find_tip<Dim>(m_, phi, m_.trackers[k], m_.tip_threshold))
+        rows.push_back(tips_.row(t, k, 0, m_.points.x0[*tip], {}));
     if constexpr (Dim == 2) {
       if (branch_.time < 0) {
         // Only columns ahead of the pre-cracks' damaged band at t = 0 can show a fork.
@@ -174,7 +159,7 @@ class PdMethod final : public Method<Dim> {
     w.value(branch_);
     const auto& P = m_.points;
     w.array(P.u), w.array(P.v), w.array(P.a), w.array(m_.nb.intact);
-    w.array(last_tip_), w.array(last_tip_time_);
+    tips_.save(w);
   }
   // The solver computed the initial accelerations when it was built; they are replaced by the
   // saved ones (bit-identical continuation) together with u, v and the bond states.
@@ -185,23 +170,18 @@ class PdMethod final : public Method<Dim> {
     r.value(branch_);
     auto& P = m_.points;
     r.array(P.u, "points"), r.array(P.v, "points"), r.array(P.a, "points"), r.array(m_.nb.intact, "bonds");
-    r.array(last_tip_, "crack-tip trackers"), r.array(last_tip_time_, "crack-tip trackers");
+    tips_.load(r);
     solver_.restore(t, step, work, damp);
   }
 
  private:
-  void init() {
-    last_tip_.assign(m_.trackers.size(), Vec<Dim>::Constant(std::nan("")));
-    last_tip_time_.assign(m_.trackers.size(), -1.0);
-  }
   struct Branch {
     double time = -1.0, x = 0.0, y = 0.0;
   };
   std::unique_ptr<PdSystem<Dim>> owned_;  // null when the caller owns the system
   PdSystem<Dim>& m_;
   PdSolver<Dim> solver_;
-  std::vector<Vec<Dim>> last_tip_;
-  std::vector<double> last_tip_time_;
+  TipTable<Dim> tips_{m_.trackers.size(), 1, {}};  // a tracker follows one tip
   Branch branch_;
 };
 

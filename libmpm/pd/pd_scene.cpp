@@ -12,6 +12,7 @@
 #include "libmpm/core/json_reader.hpp"
 #include "libmpm/core/units.hpp"
 #include "libmpm/scene/loads.hpp"
+#include "libmpm/scene/resolution.hpp"
 #include "libmpm/scene/sections.hpp"
 
 namespace cleave::pd {
@@ -75,7 +76,7 @@ PdMaterial read_linear_elastic(const json& j, const std::string& path, const PdM
 
 template <int Dim>
 PdSystem<Dim> build_pd_system(const json& scene) {
-  ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "peridynamics", "materials",
+  ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "resolution", "peridynamics", "materials",
                                "bodies", "cracks", "loads", "damping", "time", "output", "checks"});
   PdSystem<Dim> m;
   const UnitSystem units = UnitSystem::from_json(scene.value("units", json()), "units");
@@ -91,11 +92,12 @@ PdSystem<Dim> build_pd_system(const json& scene) {
 
   // --- peridynamics ---------------------------------------------------------------------------
   std::vector<std::pair<Vec<Dim>, Vec<Dim>>> no_fail;
-  if (!top.has("peridynamics")) throw SceneError("peridynamics", "missing (needs at least spacing)");
+  const std::string dx_key = top.has("resolution") ? "resolution" : "peridynamics.spacing";
   {
-    ObjectReader r(scene["peridynamics"], "peridynamics", {"spacing", "horizon_factor", "no_fail", "crack_tips",
+    static const json no_section = json::object();  // every key is optional with "resolution"
+    ObjectReader r(top.has("peridynamics") ? scene["peridynamics"] : no_section, "peridynamics", {"spacing", "horizon_factor", "no_fail", "crack_tips",
                                                            "tip_damage"});
-    m.dx = r.positive("spacing", L);
+    m.dx = scene::read_resolution(scene, "peridynamics", "spacing", "the lattice spacing", L);
     m.horizon_factor = r.integer_or("horizon_factor", 3, 1, 12);
     m.delta = m.horizon_factor * m.dx;
     m.tip_threshold = r.number_or("tip_damage", 0.3);
@@ -176,7 +178,7 @@ PdSystem<Dim> build_pd_system(const json& scene) {
     const std::string path = index_path("bodies", i);
     ObjectReader r(bodies[i], path, {"name", "material", "shape", "particles_per_cell", "velocity", "thickness"});
     if (r.has("particles_per_cell"))
-      throw SceneError(r.at("particles_per_cell"), "not used by peridynamics: the lattice spacing is peridynamics.spacing");
+      throw SceneError(r.at("particles_per_cell"), "not used by peridynamics: the lattice spacing is \"resolution\"");
     if (r.has("thickness"))
       throw SceneError(r.at("thickness"), "peridynamics uses analysis.thickness for every body");
     const std::string name = r.string_or("name", "body" + std::to_string(i));
@@ -197,7 +199,7 @@ PdSystem<Dim> build_pd_system(const json& scene) {
       c1[d] = static_cast<int64_t>(std::ceil(bb.hi[d] / m.dx)) + 1;
       cells *= double(c1[d] - c0[d]);
     }
-    if (cells > 2e9) throw SceneError("peridynamics.spacing", "body '" + name + "' would need more than 2e9 lattice sites");
+    if (cells > 2e9) throw SceneError(dx_key, "body '" + name + "' would need more than 2e9 lattice sites");
     const std::size_t first = P.size();
     std::array<int64_t, Dim> q;
     for (q[0] = c0[0]; q[0] < c1[0]; ++q[0])
@@ -233,7 +235,7 @@ PdSystem<Dim> build_pd_system(const json& scene) {
     m.bodies.push_back(name);
   }
   if (P.size() > static_cast<std::size_t>(std::numeric_limits<int32_t>::max()))
-    throw SceneError("peridynamics.spacing", "more than 2^31 - 1 points");
+    throw SceneError(dx_key, "more than 2^31 - 1 points");
   const double tol = 1e-9 * m.dx;
   for (std::size_t p = 0; p < P.size(); ++p)
     for (const auto& [lo, hi] : no_fail)
@@ -333,7 +335,7 @@ PdSystem<Dim> build_pd_system(const json& scene) {
   m.damping = scene::read_damping(scene, units);
   scene::read_time(scene, units, m.stable_dt, "sqrt(2 rho / sum_j V_j c_ij) (seed 003 eq. 15)",
                    "no point has a bond, so there is no stable step to scale", m);
-  scene::read_output(scene, units, kPdFields, " for peridynamics", true, m);
+  scene::read_output(scene, units, kPdFields, " for peridynamics", !m.trackers.empty(), m);
   scene::read_checks(scene, m);
   return m;
 }

@@ -28,12 +28,13 @@ double read_damping(const nlohmann::json& scene, const UnitSystem& units);
 void read_time(const nlohmann::json& scene, const UnitSystem& units, double stable_dt, const std::string& limit,
                const std::string& no_limit_reason, RunSettings& s);
 
-// "output": interval (default end / 100), global_interval (interval / 10), tip_interval
-// (global_interval; accepted only when `tip_interval_key`), fields (each one of `valid`; all by
-// default). `qualifier` is added to the unknown-field message (" for peridynamics").
+// "output": interval (default end / 100), global_interval (interval / 10), tip_interval (rows of
+// crack_tips.csv, every method; global_interval), fields (each one of `valid`; all by default).
+// `qualifier` is added to the unknown-field message (" for peridynamics"). `has_tips`: the scene
+// asks for a crack-tip table; output.tip_interval without one is an error.
 template <class Names>
 void read_output(const nlohmann::json& scene, const UnitSystem& units, const Names& valid, const std::string& qualifier,
-                 bool tip_interval_key, RunSettings& s);
+                 bool has_tips, RunSettings& s);
 
 // "checks.energy_blowup_factor" (> 1, default 10).
 void read_checks(const nlohmann::json& scene, RunSettings& s);
@@ -60,7 +61,7 @@ std::string fmt(double v);
 
 template <class Names>
 void read_output(const nlohmann::json& scene, const UnitSystem& units, const Names& valid, const std::string& qualifier,
-                 bool tip_interval_key, RunSettings& s) {
+                 bool has_tips, RunSettings& s) {
   const double T = units.factor(Quantity::Time);
   auto& o = s.output;
   o.interval = s.end_time / 100;
@@ -68,8 +69,10 @@ void read_output(const nlohmann::json& scene, const UnitSystem& units, const Nam
   o.global_interval = o.interval / 10;
   o.tip_interval = o.global_interval;
   if (!scene.contains("output") || scene["output"].is_null()) return;
-  ObjectReader r = tip_interval_key ? ObjectReader(scene["output"], "output", {"interval", "global_interval", "tip_interval", "fields"})
-                                    : ObjectReader(scene["output"], "output", {"interval", "global_interval", "fields"});
+  ObjectReader r(scene["output"], "output", {"interval", "global_interval", "tip_interval", "fields"});
+  if (r.has("tip_interval") && !has_tips)
+    throw SceneError(r.at("tip_interval"), "the scene asks for no crack-tip table (MPM: \"crack_tips\"; "
+                                           "peridynamics: \"peridynamics.crack_tips\")");
   o.interval = r.positive_or("interval", s.end_time / 100, T);
   if (r.has("fields")) o.fields = read_field_names(r["fields"], valid, qualifier);
   o.global_interval = r.positive_or("global_interval", o.interval / 10, T);
