@@ -11,6 +11,7 @@
 #include "libmpm/crack/surface.hpp"
 #include "libmpm/core/json_reader.hpp"
 #include "libmpm/core/units.hpp"
+#include "libmpm/pd/pd_material.hpp"
 #include "libmpm/scene/loads.hpp"
 #include "libmpm/scene/resolution.hpp"
 #include "libmpm/scene/sections.hpp"
@@ -34,43 +35,6 @@ int64_t lattice_key(const std::array<int64_t, Dim>& q) {
   return k;
 }
 
-// Peridynamic material styles by scene "type": each reads its keys into the bond constants of the
-// lattice. An unknown type lists the registered ones.
-struct PdMaterialContext {
-  const UnitSystem& units;
-  PdModel model;
-  double delta, thickness;
-  std::vector<std::string>& warnings;
-};
-using PdMaterialReader = PdMaterial (*)(const json& j, const std::string& path, const PdMaterialContext& c);
-using PdMaterialStyles = NameTable<PdMaterialReader, PdMaterialContext>;
-
-// "linear_elastic": Young's modulus and density, plus the fracture energy that sets the critical
-// stretch. Bond-based peridynamics fixes nu (1/3 plane stress, 1/4 otherwise); E is matched, and in
-// 3D K = E / (3 (1 - 2 nu)) with that nu, so the lattice reproduces the scene's Young's modulus.
-PdMaterial read_linear_elastic(const json& j, const std::string& path, const PdMaterialContext& c) {
-  const ObjectReader r(j, path, {"name", "type", "E", "nu", "density", "fracture_energy"});
-  PdMaterial pm;
-  pm.E = r.positive("E", c.units.factor(Quantity::Stress));
-  pm.density = r.positive("density", c.units.factor(Quantity::Density));
-  if (!r.has("fracture_energy"))
-    throw SceneError(r.at("fracture_energy"), "missing: peridynamics needs the fracture energy G0 (critical stretch)");
-  pm.G0 = r.positive("fracture_energy", c.units.factor(Quantity::Stress) * c.units.factor(Quantity::Length));
-  const double nu_implied = c.model == PdModel::PlaneStress ? 1.0 / 3.0 : 0.25;
-  if (r.has("nu")) {
-    pm.nu_given = r.number("nu");
-    if (std::fabs(pm.nu_given - nu_implied) > 1e-6)
-      c.warnings.push_back(path + ".nu = " + std::to_string(pm.nu_given) +
-                           " is ignored: bond-based peridynamics implies nu = " + std::to_string(nu_implied) +
-                           " for this analysis (E is matched)");
-  }
-  const double modulus = c.model == PdModel::ThreeD ? pm.E / (3.0 * (1.0 - 2.0 * nu_implied)) : pm.E;
-  pm.k = pd_constants(c.model, modulus, pm.G0, c.delta, c.thickness);
-  return pm;
-}
-
-[[maybe_unused]] const bool linear_elastic_registered =
-    PdMaterialStyles::instance().add("linear_elastic", &read_linear_elastic);
 
 }  // namespace
 

@@ -1,0 +1,177 @@
+// MPM's crack sections of the scene, read once the model has its grid and particles: "cracks" (the
+// polylines, checked against the grid and the bodies, tips resolved) and "crack_tips" (the J-integral
+// contour, checked against the grid, the other cracks and the materials).
+#include "libmpm/mpm/crack_scene.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "libmpm/core/error.hpp"
+#include "libmpm/core/json_reader.hpp"
+#include "libmpm/crack/crack2d.hpp"
+#include "libmpm/crack/tip_parameters.hpp"
+
+namespace cleave {
+namespace {
+
+using nlohmann::json;
+
+// Checks that need the model: every crack point inside the grid (with room for its nodes), and
+// every crack touching a body (some particle within one cell of a segment).
+void check_cracks(const Model<2>& m) {
+  const double h = m.grid.h;
+  const Vec<2> lo = m.grid.origin, hi = m.grid.upper();
+  for (const auto& c : m.cracks) {
+    const std::string path = "cracks[" + std::to_string(c.id) + "]";
+    for (std::size_t i = 0; i < c.points.size(); ++i) {
+      const Vec<2>& x = c.points[i];
+      if (!((x.array() > lo.array() + h).all() && (x.array() < hi.array() - h).all()))
+        throw SceneError(path, "crack '" + c.name + "': point " + std::to_string(i) + " (" + std::to_string(x.x()) +
+                                   ", " + std::to_string(x.y()) +
+                                   ") m lies outside the grid or within one cell of its edge; enlarge the grid");
+    }
+    bool touches = false;
+    const Vec<2> clo = c.lo.array() - h, chi = c.hi.array() + h;
+    for (std::size_t p = 0; p < m.particles.size() && !touches; ++p) {
+      const Vec<2>& x = m.particles.x[p];
+      if ((x.array() < clo.array()).any() || (x.array() > chi.array()).any()) continue;
+      for (std::size_t s = 0; s + 1 < c.points.size() && !touches; ++s) {
+        const Vec<2> a = c.points[s], d = c.points[s + 1] - a;
+        const double t = std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+        touches = (x - (a + t * d)).norm() <= h;
+      }
+    }
+    if (!touches)
+      throw SceneError(path, "crack '" + c.name + "' lies outside every body (no particle within one cell of it)");
+  }
+}
+
+// "tips": "auto" makes an end point a crack tip when there is material ahead of it (a particle
+// within one cell of the point one cell ahead along the crack): the end of a crack cut in from a
+// free edge is no tip.
+void resolve_tips(Model<2>& m) {
+  const double h = m.grid.h;
+  for (auto& c : m.cracks) {
+    if (c.tips != "auto") continue;
+    for (int end = 0; end < 2; ++end) {
+      const crack::TipFrame f = crack::tip_frame(c, end);
+      const Vec<2> ahead = f.tip + h * f.e1;
+      c.tip[end] = false;
+      for (std::size_t p = 0; p < m.particles.size() && !c.tip[end]; ++p)
+        c.tip[end] = (m.particles.x[p] - ahead).norm() <= h;
+    }
+  }
+}
+
+// The scene key "crack_tips": J-integral contour and output interval (default: global_interval).
+// The J-integral's path independence holds for a contour around one crack tip only: warn when a
+// contour encloses part of another crack (or of the same crack away from the tip's own segments),
+// sampling every segment at quarter cells.
+void warn_contour_meets_cracks(const Model<2>& m, const crack::TipSettings& s, const crack::Crack2D& c, int end,
+                                      std::vector<std::string>& warnings) {
+  const double h = m.grid.h;
+  const crack::TipFrame f = crack::tip_frame(c, end);
+  const double reach = s.radius * h * std::sqrt(2.0);  // the contour's farthest point from the tip
+  // Arc length of the tip's own crack from its start to each vertex.
+  std::vector<double> arc(c.points.size(), 0.0);
+  for (std::size_t j = 1; j < c.points.size(); ++j) arc[j] = arc[j - 1] + (c.points[j] - c.points[j - 1]).norm();
+  for (const auto& o : m.cracks)
+    for (std::size_t i = 0; i + 1 < o.points.size(); ++i) {
+      const Vec<2> a = o.points[i], b = o.points[i + 1];
+      const int n = std::max(1, static_cast<int>(std::ceil(4 * (b - a).norm() / h)));
+      bool inside = false;
+      for (int k = 0; k <= n && !inside; ++k) {
+        const Vec<2> x = a + (b - a) * (static_cast<double>(k) / n);
+        // The tip's own crack runs into the contour along its last stretch: skip the points on it
+        // within the contour's reach of the tip, measured along the crack.
+        if (&o == &c) {
+          const double from_start = arc[i] + (x - a).norm();  // distance from the tip along the crack
+          const double along = end == 1 ? arc.back() - from_start : from_start;
+          if (along <= reach + 1e-9 * h) continue;
+        }
+        inside = crack::inside_contour(f, s, h, x);
+      }
+      if (inside) {
+        warnings.push_back("crack_tips: the contour around the " + std::string(end ? "end" : "start") + " tip of crack '" +
+                           c.name + "' encloses part of crack '" + o.name +
+                           "'; J there is not path-independent (use a smaller crack_tips.radius or move the cracks apart)");
+        return;
+      }
+    }
+}
+
+crack::TipSettings read_tip_settings(const json& scene, Model<2>& m, double time_scale,
+                                          std::vector<std::string>& warnings) {
+  const ObjectReader r(scene["crack_tips"], "crack_tips", {"interval", "contour", "radius", "points", "volume_term"});
+  if (m.cracks.empty()) throw SceneError("crack_tips", "the scene declares no cracks (key \"cracks\")");
+  crack::TipSettings s;
+  // crack_tips.interval: the older spelling of output.tip_interval, the key of every method.
+  if (r.has("interval")) {
+    if (scene.contains("output") && scene["output"].contains("tip_interval"))
+      throw SceneError(r.at("interval"), "give output.tip_interval (or crack_tips.interval), not both");
+    m.output.tip_interval = r.positive("interval", time_scale);
+  }
+  const std::string shape = r.string_or("contour", "circle");
+  if (shape == "rectangle") s.contour = crack::TipSettings::Contour::Rectangle;
+  else if (shape != "circle") throw SceneError(r.at("contour"), "unknown contour \"" + shape + "\"; valid: circle, rectangle");
+  s.radius = r.positive_or("radius", 2.0);
+  if (s.radius < 1.0)
+    throw SceneError(r.at("radius"), "at least 1 cell (the contour must reach past the tip's own cell; default 2)");
+  // 16 suffice on the circle (seed 000); the square's corners need 32 for the same accuracy.
+  s.points = r.integer_or("points", s.contour == crack::TipSettings::Contour::Circle ? 16 : 32, 16, 100000);
+  if (r.has("volume_term")) {
+    if (!r["volume_term"].is_boolean()) throw SceneError(r.at("volume_term"), "expected true or false");
+    s.volume_term = r["volume_term"].get<bool>();
+  }
+  // Every contour, with the nodes it interpolates from, must lie inside the grid.
+  const double h = m.grid.h;
+  const double extent = s.radius * h * (s.contour == crack::TipSettings::Contour::Circle ? 1.0 : std::sqrt(2.0)) + h;
+  bool any = false;
+  for (const auto& c : m.cracks)
+    for (int end = 0; end < 2; ++end) {
+      if (!c.tip[end]) continue;
+      any = true;
+      const Vec<2> x = crack::tip_frame(c, end).tip;
+      if ((x.array() - extent < m.grid.origin.array()).any() || (x.array() + extent > m.grid.upper().array()).any())
+        throw SceneError("crack_tips.radius", "the contour around the " + std::string(end ? "end" : "start") +
+                                                  " tip of crack '" + c.name + "' leaves the grid; enlarge the grid");
+      warn_contour_meets_cracks(m, s, c, end, warnings);
+      for (std::size_t p = 0; p < m.particles.size(); ++p)
+        if ((m.particles.x[p] - x).norm() <= extent) {
+          double g, nu;
+          if (!m.materials[m.particles.material[p]]->isotropic_elastic(g, nu))
+            throw SceneError("crack_tips", "crack '" + c.name + "': K from J needs an isotropic elastic material at its tips");
+          break;
+        }
+    }
+  if (!any) throw SceneError("crack_tips", "no crack has a tip (every end lies outside the material, or \"tips\": \"none\")");
+  return s;
+}
+
+}  // namespace
+
+template <int Dim>
+void read_cracks(const json& scene, double length, Model<Dim>& m) {
+  if constexpr (Dim == 3) {
+    throw SceneError("cracks", "3D crack surfaces are not supported yet (cracks are 2D polylines)");
+  } else {
+    m.cracks = crack::parse_cracks(scene["cracks"], "cracks", length);
+    check_cracks(m);
+    resolve_tips(m);
+  }
+}
+
+template <int Dim>
+void read_crack_tips(const json& scene, double time_scale, Model<Dim>& m) {
+  if constexpr (Dim == 3)
+    throw SceneError("crack_tips", "crack-tip parameters are computed for 2D cracks only");
+  else
+    m.crack_tips = read_tip_settings(scene, m, time_scale, m.warnings);
+}
+
+template void read_cracks<2>(const json&, double, Model<2>&);
+template void read_cracks<3>(const json&, double, Model<3>&);
+template void read_crack_tips<2>(const json&, double, Model<2>&);
+template void read_crack_tips<3>(const json&, double, Model<3>&);
+
+}  // namespace cleave
