@@ -231,6 +231,28 @@ TEST(PdSolver, DeterministicForOneAndTwoThreads) {
   for (std::size_t p = 0; p < a.first.size(); ++p) ASSERT_TRUE(a.first[p] == b.first[p]) << "point " << p;
 }
 
+// Bodies are read once for every method (scene/bodies.hpp): a peridynamic body spins as an MPM body
+// does, v = v0 + w x (x - c).
+TEST(PdScene, BodyAngularVelocityIsTheSharedRigidRotation) {
+  json s = specimen(2, {0.01, 0.01}, 0.001, 3, 1e-6);
+  s["bodies"][0]["velocity"] = {1.0, 0.0};
+  s["bodies"][0]["angular_velocity"] = 100.0;  // 1/s
+  s["bodies"][0]["rotation_center"] = {0.005, 0.005};
+  const auto m = build_pd_system<2>(s);
+  ASSERT_GT(m.points.size(), 0u);
+  for (std::size_t p = 0; p < m.points.size(); ++p) {
+    const Vec<2> r = m.points.x0[p] - Vec<2>(0.005, 0.005);
+    EXPECT_NEAR((m.points.v[p] - Vec<2>(1.0 - 100.0 * r.y(), 100.0 * r.x())).norm(), 0.0, 1e-12);
+  }
+  s["bodies"][0].erase("angular_velocity");
+  try {
+    build_pd_system<2>(s);
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key_path(), "bodies[0].rotation_center");
+  }
+}
+
 // A stopped run resumed from its checkpoint ends in the same state as an uninterrupted run.
 TEST(PdRun, ResumeFromCheckpointIsExact) {
   json s = load_scene_file(fs::path(CLEAVE_SOURCE_DIR) / "data/scenes/pd_branching.json");

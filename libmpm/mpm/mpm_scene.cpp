@@ -10,6 +10,7 @@
 #include "libmpm/core/json_reader.hpp"
 #include "libmpm/core/units.hpp"
 #include "libmpm/mpm/crack_scene.hpp"
+#include "libmpm/scene/bodies.hpp"
 #include "libmpm/scene/loads.hpp"
 #include "libmpm/scene/resolution.hpp"
 #include "libmpm/scene/sections.hpp"
@@ -106,40 +107,18 @@ Model<Dim> build_model(const json& scene) {
     m.scheme = *s;
   }
 
-  // --- materials ------------------------------------------------------------------------------
-  std::map<std::string, int> material_index;
-  const json& mats = array_at(scene, "materials", true);
-  if (mats.empty()) throw SceneError("materials", "at least one material is needed");
-  for (std::size_t i = 0; i < mats.size(); ++i) {
-    const std::string path = index_path("materials", i);
-    if (!mats[i].is_object()) throw SceneError(path, "expected an object");
-    if (!mats[i].contains("name")) throw SceneError(path + ".name", "missing");
-    if (!mats[i]["name"].is_string()) throw SceneError(path + ".name", "expected a string");
-    if (!mats[i].contains("type")) throw SceneError(path + ".type", "missing");
-    if (!mats[i]["type"].is_string()) throw SceneError(path + ".type", "expected a string");
+  // --- materials and bodies: scene/bodies.hpp (shapes first, so the grid can be derived) --------
+  auto& registry = MaterialRegistry<Dim>::instance();
+  const auto material_index = scene::read_materials(scene, [&](const std::string& path, const std::string& type,
+                                                               const json& j) {
     // Each material style checks its own keys (linear_elastic.cpp).
-    const std::string name = mats[i]["name"].get<std::string>();
-    const std::string type = mats[i]["type"].get<std::string>();
-    if (material_index.count(name)) throw SceneError(path + ".name", "duplicate material name '" + name + "'");
-    auto& reg = MaterialRegistry<Dim>::instance();
-    if (!reg.has(type)) throw SceneError(path + ".type", reg.unknown("material type", type));
-    m.materials.push_back(reg.create(type, MaterialArgs{mats[i], path, units, m.analysis}));
-    material_index[name] = static_cast<int>(i);
-  }
-
-  // --- bodies (shapes first, so the grid can be derived from them) ---------------------------
-  const json& bodies = array_at(scene, "bodies", true);
-  if (bodies.empty()) throw SceneError("bodies", "at least one body is needed");
-  std::vector<std::unique_ptr<geom::Shape<Dim>>> shapes;
+    if (!registry.has(type)) throw SceneError(path + ".type", registry.unknown("material type", type));
+    m.materials.push_back(registry.create(type, MaterialArgs{j, path, units, m.analysis}));
+  });
+  const auto specs = scene::read_bodies<Dim>(scene, units, material_index);
   geom::Box<Dim> all;
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const std::string path = index_path("bodies", i);
-    ObjectReader r(bodies[i], path,
-                   {"name", "material", "shape", "particles_per_cell", "velocity", "angular_velocity", "rotation_center",
-                    "thickness"});
-    if (!r.has("shape")) throw SceneError(r.at("shape"), "missing");
-    shapes.push_back(geom::parse_shape<Dim>(bodies[i]["shape"], r.at("shape"), L));
-    const auto b = shapes.back()->bounds();
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const auto b = specs[i].shape->bounds();
     all = i == 0 ? b : all.united(b);
   }
 
@@ -184,24 +163,19 @@ Model<Dim> build_model(const json& scene) {
   }
 
   // --- particles --------------------------------------------------------------------------------
-  std::vector<BodyLattice<Dim>> lattices(bodies.size());
+  std::vector<BodyLattice<Dim>> lattices(specs.size());
   const int K = shape_function_style(m.shape_function).K;
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const std::string path = index_path("bodies", i);
-    ObjectReader r(bodies[i], path,
-                   {"name", "material", "shape", "particles_per_cell", "velocity", "angular_velocity", "rotation_center",
-                    "thickness"});
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const auto& spec = specs[i];
+    const ObjectReader r = spec.reader();
     Body b;
-    b.name = r.string_or("name", "body" + std::to_string(i));
-    const std::string mat = r.string("material");
-    if (!material_index.count(mat)) throw SceneError(r.at("material"), "no material named '" + mat + "'");
-    b.material = material_index[mat];
+    b.name = spec.name;
+    b.material = spec.material;
     const int n = r.integer_or("particles_per_cell", 2, 1, 8);
     if (Dim == 3 && r.has("thickness")) throw SceneError(r.at("thickness"), "a 3D body has no thickness");
     b.thickness = Dim == 2 ? r.positive_or("thickness", thickness, L) : 1.0;
-    const Vec<Dim> v0 = r.has("velocity") ? r.vec<Dim>("velocity", units.factor(Quantity::Velocity))
-                                          : Vec<Dim>::Zero();
-    const auto& shape = *shapes[i];
+    const Vec<Dim> v0 = spec.velocity;
+    const auto& shape = *spec.shape;
     const auto bb = shape.bounds();
     const double h = m.grid.h;
     std::array<int64_t, Dim> c0, c1;
@@ -252,24 +226,7 @@ Model<Dim> build_model(const json& scene) {
     b.count = P.size() - b.first;
     if (b.count == 0)
       throw SceneError(r.at("shape"), "body '" + b.name + "' holds no particle centre at this cell size");
-    if (r.has("angular_velocity")) {
-      // Rigid rotation about the body's centroid: v = v0 + w x (x - c).
-      if constexpr (Dim == 3) {
-        throw SceneError(r.at("angular_velocity"), "only for 2D bodies (a rotation rate about z)");
-      } else {
-        const double w = r.number("angular_velocity", units.factor(Quantity::InverseTime));
-        Vec<Dim> c = Vec<Dim>::Zero();
-        if (r.has("rotation_center")) {
-          c = r.vec<Dim>("rotation_center", L);
-        } else {
-          for (std::size_t p = b.first; p < P.size(); ++p) c += P.x[p];
-          c /= static_cast<double>(b.count);
-        }
-        for (std::size_t p = b.first; p < P.size(); ++p) P.v[p] += w * Vec<2>(-(P.x[p].y() - c.y()), P.x[p].x() - c.x());
-      }
-    }
-    for (const auto& other : m.bodies)
-      if (other.name == b.name) throw SceneError(r.at("name"), "duplicate body name '" + b.name + "'");
+    spec.add_rotation(units, L, &P.x[b.first], &P.v[b.first], b.count);
     m.bodies.push_back(b);
   }
 

@@ -12,6 +12,7 @@
 #include "libmpm/core/json_reader.hpp"
 #include "libmpm/core/units.hpp"
 #include "libmpm/pd/pd_material.hpp"
+#include "libmpm/scene/bodies.hpp"
 #include "libmpm/scene/loads.hpp"
 #include "libmpm/scene/resolution.hpp"
 #include "libmpm/scene/sections.hpp"
@@ -106,55 +107,35 @@ PdSystem<Dim> build_pd_system(const json& scene) {
   }
 
   // --- materials: looked up by "type" among the peridynamic material styles ----------------------
-  std::map<std::string, int> material_index;
-  const json& mats = array_at(scene, "materials", true);
-  if (mats.empty()) throw SceneError("materials", "at least one material is needed");
   const PdMaterialContext mc{units, model, m.delta, m.thickness, m.warnings};
-  for (std::size_t i = 0; i < mats.size(); ++i) {
-    const std::string path = index_path("materials", i);
-    if (!mats[i].is_object()) throw SceneError(path, "expected an object");
-    for (const char* key : {"name", "type"}) {
-      if (!mats[i].contains(key) || mats[i][key].is_null()) throw SceneError(path + "." + key, "missing");
-      if (!mats[i][key].is_string()) throw SceneError(path + "." + key, "expected a string");
-    }
-    // Each style checks its own keys.
-    const std::string name = mats[i]["name"].get<std::string>(), type = mats[i]["type"].get<std::string>();
+  const auto material_index = scene::read_materials(scene, [&](const std::string& path, const std::string& type,
+                                                               const json& j) {
+    // Each style checks its own keys (pd_linear_elastic.cpp).
     const auto& styles = PdMaterialStyles::instance();
     const PdMaterialReader* read = styles.find(type);
     if (!read)
       throw SceneError(path + ".type", "unknown material type '" + type + "' for peridynamics; valid: " +
                                            styles.names_joined());
-    if (material_index.count(name)) throw SceneError(path + ".name", "duplicate material name '" + name + "'");
-    m.materials.push_back((*read)(mats[i], path, mc));
-    m.materials.back().name = name;
-    material_index[name] = static_cast<int>(i);
-  }
+    m.materials.push_back((*read)(j, path, mc));
+    m.materials.back().name = j["name"].get<std::string>();
+  });
 
   // --- bodies on one lattice: points at (k + 1/2) dx ---------------------------------------------
-  const json& bodies = array_at(scene, "bodies", true);
-  if (bodies.empty()) throw SceneError("bodies", "at least one body is needed");
+  const auto specs = scene::read_bodies<Dim>(scene, units, material_index);
   auto& P = m.points;
   std::unordered_map<int64_t, int32_t> occupied;  // lattice key -> point
   std::vector<std::array<int64_t, Dim>> coord;
-  std::vector<Vec<Dim>> body_velocity;
   const double vol = std::pow(m.dx, Dim) * (Dim == 2 ? m.thickness : 1.0);
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const std::string path = index_path("bodies", i);
-    ObjectReader r(bodies[i], path, {"name", "material", "shape", "particles_per_cell", "velocity", "thickness"});
+  for (const auto& spec : specs) {
+    const ObjectReader r = spec.reader();
     if (r.has("particles_per_cell"))
       throw SceneError(r.at("particles_per_cell"), "not used by peridynamics: the lattice spacing is \"resolution\"");
     if (r.has("thickness"))
       throw SceneError(r.at("thickness"), "peridynamics uses analysis.thickness for every body");
-    const std::string name = r.string_or("name", "body" + std::to_string(i));
-    for (const auto& b : m.bodies)
-      if (b == name) throw SceneError(r.at("name"), "duplicate body name '" + name + "'");
-    const std::string mat = r.string("material");
-    if (!material_index.count(mat)) throw SceneError(r.at("material"), "no material named '" + mat + "'");
-    const int mi = material_index[mat];
-    if (!r.has("shape")) throw SceneError(r.at("shape"), "missing");
-    const auto shape = geom::parse_shape<Dim>(bodies[i]["shape"], r.at("shape"), L);
-    const Vec<Dim> v0 =
-        r.has("velocity") ? r.vec<Dim>("velocity", units.factor(Quantity::Velocity)) : Vec<Dim>::Zero();
+    const std::string& name = spec.name;
+    const int mi = spec.material;
+    const auto& shape = spec.shape;
+    const Vec<Dim> v0 = spec.velocity;
     const auto bb = shape->bounds();
     std::array<int64_t, Dim> c0, c1;
     double cells = 1;
@@ -196,6 +177,7 @@ PdSystem<Dim> build_pd_system(const json& scene) {
         }
     if (P.size() == first)
       throw SceneError(r.at("shape"), "body '" + name + "' holds no lattice point at this spacing");
+    spec.add_rotation(units, L, &P.x0[first], &P.v[first], P.size() - first);
     m.bodies.push_back(name);
   }
   if (P.size() > static_cast<std::size_t>(std::numeric_limits<int32_t>::max()))
