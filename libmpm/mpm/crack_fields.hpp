@@ -129,8 +129,10 @@ class CrackFields : crack_fields::CrackContact<2, SF> {
     });
   }
 
-  // Task 1 for near particle k: masses and momenta per field (eq. 26), total nodal volume (eq. 27)
-  // and, for displacement contact, mass-weighted displacements per field (seed 000 eq. 68).
+  // Task 1 for near particle k: masses and momenta per field (eq. 26), mass-weighted positions per
+  // field at multi-field nodes (a field's velocity is that of its mass centre: crack motion and contact
+  // extrapolate it to the crack with the crack's spin), total nodal volume (eq. 27) and, for
+  // displacement contact, mass-weighted displacements per field (seed 000 eq. 68) and rotations per node.
   // Each detection method's sums only when a crack uses it (volumes: seed 002; displacements: seed 000).
   void extrapolate(std::size_t k, const St& s) {
     if (need_volume_) {
@@ -145,30 +147,34 @@ class CrackFields : crack_fields::CrackContact<2, SF> {
     const std::size_t p = static_cast<std::size_t>(near_[k]);
     const double mp = P_.mass[p];
     const V mv = mp * P_.v[p];
+    const V mx = mp * P_.x[p];
     V mu = V::Zero();
-    if constexpr (disp) mu = mp * P_.u[p];
+    double mrot = 0.0;
+    if constexpr (disp) mu = mp * P_.u[p], mrot = mp * P_.rotation[p];
     double area = 0.0;
     if constexpr (volume) {
       const auto& e = P_.strain[p];
       area = area0_[p] * (1.0 + e[0]) * (1.0 + e[1]);  // eq. 25
     }
     for_each_pair_weight(k, s, [&](int64_t n, int32_t x, double w) {
+      const int32_t b = node_block_[n];
       if (x < 0) {
         grid_.mass[n] += mp * w;
         grid_.momentum[n] += mv * w;
-        if constexpr (disp) {
-          const int32_t b = node_block_[n];
-          if (b >= 0) disp0_[b] += mu * w;
+        if (b >= 0) {
+          pos0_[b] += mx * w;
+          if constexpr (disp) disp0_[b] += mu * w;
         }
       } else {
         mass_[x] += mp * w;
         momentum_[x] += mv * w;
+        pos_[x] += mx * w;
         if constexpr (disp) disp_[x] += mu * w;
       }
-      if constexpr (volume) {
-        const int32_t b = node_block_[n];
+      if constexpr (disp)
+        if (b >= 0) rot_[b] += mrot * w;
+      if constexpr (volume)
         if (b >= 0) volume_[b] += area * w;
-      }
     });
   }
 
@@ -238,6 +244,7 @@ class CrackFields : crack_fields::CrackContact<2, SF> {
         }
       }
     }
+    carry_nodal_velocities_to_nodes();  // (with the spins contact() found from these momenta)
   }
 
   // Task 6c starts the extra fields' momenta afresh (the ordinary field's are zeroed by the stepper).
@@ -247,6 +254,12 @@ class CrackFields : crack_fields::CrackContact<2, SF> {
   void nodal_velocities() {
     for (std::size_t x = 0; x < mass_.size(); ++x)
       if (mass_[x] > 0.0) xkin_[x].v = momentum_[x] / mass_[x];
+    for (std::size_t b = 0; b < block_node_.size(); ++b) {  // the ordinary fields' (the stepper set them)
+      const int64_t n = block_node_[b];
+      if (grid_.mass[n] > 0.0) kin_[n].v = grid_.momentum[n] / grid_.mass[n];
+    }
+    update_spins();
+    carry_nodal_velocities_to_nodes();
   }
 
   using Base::contact;      // crack contact (Tasks 2 and 6c; Task 4 in update_momenta)
@@ -254,11 +267,11 @@ class CrackFields : crack_fields::CrackContact<2, SF> {
   using Base::take_overflow;
 
  private:
-  using Base::allocate_fields, Base::block_node_, Base::block_nslots_, Base::classify, Base::classify_pairs;
-  using Base::collect_near_particles, Base::cracks_, Base::disp0_, Base::disp_, Base::extra_field;
+  using Base::allocate_fields, Base::block_node_, Base::carry_nodal_velocities_to_nodes, Base::update_spins, Base::block_nslots_, Base::classify, Base::classify_pairs;
+  using Base::collect_near_particles, Base::cracks_, Base::disp0_, Base::disp_, Base::extra_field, Base::pos0_, Base::pos_;
   using Base::force_, Base::grid_, Base::kin_, Base::kOverflow, Base::mass_, Base::momentum_, Base::near_;
   using Base::near_flag_, Base::near_index_, Base::near_st_, Base::node_block_, Base::P_, Base::pair_slot_;
-  using Base::side_fields_, Base::side_valid_, Base::slot_any_, Base::volume_, Base::xkin_;
+  using Base::rot_, Base::side_fields_, Base::side_valid_, Base::slot_any_, Base::volume_, Base::xkin_;
 
   std::vector<double> area0_;  // per particle: its area at zero strain (eq. 25)
   bool need_volume_ = false, need_disp_ = false;  // some crack detects contact by volume / displacement

@@ -70,11 +70,14 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         f(static_cast<int64_t>(i + a) * stride[0] + (j + b), (a ? rx : 1.0 - rx) * (b ? ry : 1.0 - ry));
     return true;
   };
-  // Small-strain displacement gradient of particle p: its strain plus the integrated rotation.
+  // Small-strain displacement gradient of particle p relative to the rigid rotation theta of the
+  // contour's material (below): its strain plus its integrated rotation less theta.
+  double theta = 0.0;
   const auto grad_u = [&](std::size_t p) {
     const auto& e = P.strain[p];
+    const double r = P.rotation[p] - theta;
     Mat<2> g;
-    g << e[0], e[3] - P.rotation[p], e[3] + P.rotation[p], e[1];
+    g << e[0], e[3] - r, e[3] + r, e[1];
     return g;
   };
   std::vector<double> thickness(P.size(), 1.0);  // 2D masses are per body thickness
@@ -90,6 +93,46 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       rec.crack = c.id;
       rec.end = end;
       rec.x = f.tip;
+
+      // The rigid motion of the material round the tip (the particles within a cell and a half of the
+      // contour): its mean rotation theta (of the particles' integrated rotations) and its spin omega
+      // (the least-squares rigid fit of their velocities). J is evaluated relative to it: displacement
+      // gradients less theta, velocities less omega x (x - tip) (and, below, less the tip's velocity),
+      // so that a body that turns or spins rigidly contributes nothing. With the absolute quantities a
+      // spinning unloaded disk read J up to 1e4 J/m^2 after one radian (its rotation times the stresses,
+      // and the kinetic energy of the spin): docs/validation.md, cracks under rigid rotation. A rigid
+      // rotation adds theta times the net force on the contour's material to J, which vanishes at rest
+      // and is the centripetal term in a spinning body. The accelerations of eq. 33 stay absolute:
+      // with the relative gradients they carry the centrifugal body force, the physical part.
+      double omega = 0.0;
+      {
+        const double fit = contour_extent + 1.5 * h;
+        double msum = 0.0, mth = 0.0;
+        V mx = V::Zero(), mv = V::Zero();
+        for (std::size_t p = 0; p < P.size(); ++p) {
+          if ((P.x[p] - f.tip).norm() > fit) continue;
+          const double mp = P.mass[p];
+          msum += mp, mth += mp * P.rotation[p], mx += mp * P.x[p], mv += mp * P.v[p];
+        }
+        theta = 0.0;
+        if (msum > 0.0) {
+          theta = mth / msum;
+          mx /= msum, mv /= msum;
+          double num = 0.0, den = 0.0;
+          for (std::size_t p = 0; p < P.size(); ++p) {
+            if ((P.x[p] - f.tip).norm() > fit) continue;
+            const V r = P.x[p] - mx, dv = P.v[p] - mv;
+            num += P.mass[p] * (r.x() * dv.y() - r.y() * dv.x());
+            den += P.mass[p] * r.squaredNorm();
+          }
+          if (den > 0.0) omega = num / den;
+        }
+      }
+      // Particle p's velocity less the spin about the tip.
+      const auto v_rel = [&](std::size_t p) {
+        const V r = P.x[p] - f.tip;
+        return V(P.v[p].x() + omega * r.y(), P.v[p].y() - omega * r.x());
+      };
 
       // Eq. 36: nodal sums per (node, field key).
       std::map<std::pair<int64_t, uint32_t>, detail::TipFieldSums> sums;
@@ -107,6 +150,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         const double mp = P.mass[p];
         const double energy = mat.strain_energy_density(s, e);
         const Mat<2> gu = grad_u(p);
+        const V vp = v_rel(p);
         St st;
         st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
         st.for_each_weight([&](int64_t n, double w) {
@@ -120,11 +164,11 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
           a.stress += mw * Vec<3>(s[0], s[1], s[3]);
           a.grad_u += mw * gu;
           a.u += mw * P.u[p];
-          a.v += mw * P.v[p];
+          a.v += mw * vp;
           const double rho = mp / P.volume0[p];
           a.rho += mw * rho;
-          a.rho_vv += mw * rho * P.v[p].squaredNorm();
-          a.rho_v += mw * rho * P.v[p];
+          a.rho_vv += mw * rho * vp.squaredNorm();
+          a.rho_v += mw * rho * vp;
         });
       }
       if (nearest == P.size()) continue;  // no material at this tip
@@ -187,7 +231,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
           const auto it = sums.find({n, crack::field_key(m.cracks, P.x[p], node_pos(n))});
           if (it != sums.end() && it->second.m > 0.0) gv += (it->second.v / it->second.m) * g.transpose();
         });
-        J += P.mass[p] / thickness[p] * (grad_u(p).transpose() * accel(p) - gv.transpose() * (P.v[p] - v_tip));
+        J += P.mass[p] / thickness[p] * (grad_u(p).transpose() * accel(p) - gv.transpose() * (v_rel(p) - v_tip));
       }
       rec.J1 = J.dot(f.e1);
       rec.J2 = J.dot(f.e2);

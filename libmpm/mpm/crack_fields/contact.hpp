@@ -31,6 +31,7 @@ class CrackContact : public CrackMotion<Dim, SF> {
   // parallel from kParallelPoints nodes.
   void contact(double dt, bool back_compute = false) {
     const double cell_volume = G_.h * G_.h;
+    update_spins();
     flag_closing_surfaces(dt);
     const std::size_t nb = block_node_.size();
 #pragma omp parallel for schedule(static) if (parallel_points(nb))
@@ -56,7 +57,13 @@ class CrackContact : public CrackMotion<Dim, SF> {
           if (law == Law::None) continue;
           V& pa = momentum(n, xa);
           V& pb = momentum(n, xb);
-          const V dv = pa / ma - pb / mb;
+          // The fields' velocities are those of their mass centres, which lie on either side of the
+          // crack: in a body spinning at omega they differ by omega x (ca - cb) while the faces stay
+          // together. The faces' relative velocity is what remains after the crack's own spin (crack_spin).
+          const double w = spin_[crack];
+          const V ca = field_centre(n, xa), cb = field_centre(n, xb);
+          const V rigid = cross(w, ca - cb);
+          const V dv = pa / ma - pb / mb - rigid;
           const double approach = dv.dot(nrm);  // > 0: the faces move towards each other
           bool touching;
           if (c.detection == crack::Detection::Volume) {
@@ -70,15 +77,31 @@ class CrackContact : public CrackMotion<Dim, SF> {
             // Seed 000 eqs. 69-70, with the displacements predicted to the end of the step
             // (u + dt v): testing the start-of-step overlap alone lets the faces pass each other
             // by up to one step's approach (dt |dv.n|) before contact acts.
+            // The gap between the faces, not between the fields' displacements: the mass centres of
+            // the two fields started at Xa and Xb, and a rotation R of the material about them turns
+            // Xa - Xb into R (Xa - Xb) without moving the faces apart, so the overlap is
+            // (ca - cb) - R (Xa - Xb) = ua - ub + (I - R)(Xa - Xb), R from the node's mean rotation.
+            // (Without it a body turned by theta read an overlap (1 - cos theta) |Xa - Xb| and
+            // contact acted on faces that had not moved apart: docs/validation.md.)
             const V ua = (xa < 0 ? disp0_[b] : disp_[xa]) / ma, ub = (xb < 0 ? disp0_[b] : disp_[xb]) / mb;
-            touching = approach > 0.0 && (ua - ub + dt * dv).dot(nrm) > 0.0;
+            V gap = ua - ub;
+            double mn = grid_.mass[n];
+            for (int s = 0; s < block_nslots_[b]; ++s) mn += mass_[b * kExtra + s];
+            const double th = mn > 0.0 ? rot_[b] / mn : 0.0;
+            if (th != 0.0) {
+              const V d0 = (ca - ua) - (cb - ub);  // Xa - Xb
+              const double cs = std::cos(th), sn = std::sin(th);
+              gap += d0 - V(cs * d0.x() - sn * d0.y(), sn * d0.x() + cs * d0.y());
+            }
+            touching = approach > 0.0 && (gap + dt * dv).dot(nrm) > 0.0;
           }
           // The node carries a crack point whose faces touch or would cross within the step
           // (flag_closing_surfaces): contact, whatever the node-averaged indicator says.
           if (!touching && approach > 0.0 && closing_[b * cracks_.size() + crack]) touching = true;
           if (!touching) continue;
-          // Stick: both fields take the centre-of-mass velocity (eq. 13).
-          const V stick = (ma * pb - mb * pa) / (ma + mb);
+          // Stick: both fields take the centre-of-mass velocity (eq. 13), up to the rigid spin's
+          // difference between their mass centres (the change that makes dv zero).
+          const V stick = (ma * pb - mb * pa) / (ma + mb) + (ma * mb / (ma + mb)) * rigid;
           V dp;
           if (law == Law::Stick) {
             dp = stick;
@@ -105,7 +128,9 @@ class CrackContact : public CrackMotion<Dim, SF> {
 
  protected:
   using typename Base::SideFields;
-  using Base::block_key_, Base::block_node_, Base::block_nslots_, Base::cm_velocity, Base::cracks_;
+  using Base::block_key_, Base::block_node_, Base::block_nslots_, Base::cm_velocity, Base::crack_spin, Base::cracks_;
+  using Base::cross, Base::field_centre, Base::grid_, Base::mass_, Base::rot_, Base::spin_, Base::update_spins;
+  using Base::vm_;
   using Base::disp0_, Base::disp_, Base::force, Base::G_, Base::is_tip, Base::kExtra, Base::left_normal;
   using Base::linear_nodes, Base::mass, Base::momentum, Base::node_block_, Base::normal_sum;
   using Base::parallel_points, Base::side_fields, Base::side_velocity, Base::volume_;
@@ -130,13 +155,15 @@ class CrackContact : public CrackMotion<Dim, SF> {
       if (c.contact_law == Law::None) continue;
       const std::vector<SideFields>& sides = side_fields(ci);
       const std::size_t np = c.points.size();
+      const double spin = spin_[ci];
+      const std::vector<V>& vm = vm_[ci];
 #pragma omp parallel for schedule(static) if (parallel_points(np))
       for (std::size_t i = 0; i < np; ++i) {
         if (is_tip(c, i)) continue;  // its faces meet by definition (move_cracks): no gap to close
         const V nl = left_normal(c, i);
-        const V vcm = cm_velocity(c.points[i]);
-        const V va = side_velocity(sides[2 * i], vcm);
-        const V vb = side_velocity(sides[2 * i + 1], vcm);
+        const V vcm = vm[i];
+        const V va = side_velocity(sides[2 * i], vcm, spin, c.above[i]);
+        const V vb = side_velocity(sides[2 * i + 1], vcm, spin, c.below[i]);
         if ((c.above[i] - c.below[i] + dt * (va - vb)).dot(nl) > 0.0) continue;
         auto flag = [&](int64_t n, double) {  // (relaxed: only ever set to 1 here, by any point)
           const int32_t b = node_block_[n];

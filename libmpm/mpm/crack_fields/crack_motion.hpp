@@ -24,6 +24,13 @@ class CrackMotion : public FieldSlots<Dim, SF> {
 
  public:
   // Moves every crack with the end-of-step momenta.
+  // A field's nodal velocity is the velocity of its mass centre, which sits off the node (and off the
+  // crack) by up to half a cell on its side: in a body that spins at omega, the above and below fields
+  // of a node differ by omega x (their centres' separation) although the faces do not move apart. So a
+  // surface takes each field's velocity carried from the field's mass centre to the surface with the
+  // crack's own spin (crack_spin: the rigid rotation rate of its points): without that the surfaces of
+  // a spinning crack slid past each other at omega times the centres' separation, and the rotating
+  // tangential offset opened or closed the tracked crack (docs/validation.md, cracks under rigid rotation).
   // At an interior crack tip (crack.tip[end], material ahead of it) the two faces meet: its surfaces
   // stay at the crack point itself, so the tracked opening there is zero. Followed with the side
   // fields instead, a tip's surfaces interpolate nodes whose fields belong to the crack flanks behind
@@ -31,21 +38,24 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   // opening in a plate at rest (docs/validation.md, 2D cracks item 4). A free end (an edge crack's
   // mouth, no material ahead) keeps following its sides.
   void move_cracks(double dt) {
+    spin_.resize(cracks_.size());
+    vm_.resize(cracks_.size());
     for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
       crack::Crack2D& c = cracks_[ci];
       const std::size_t np = c.points.size();
-      std::vector<V> vm(np), va(np), vb(np);
+      std::vector<V> va(np), vb(np);
       const std::vector<SideFields>& sides = side_fields(ci);
+      std::vector<V>& vm = vm_[ci];
+      const double spin = spin_[ci] = crack_spin(c, vm);
 #pragma omp parallel for schedule(static) if (parallel_points(np))
       for (std::size_t i = 0; i < np; ++i) {
-        const V vcm = cm_velocity(c.points[i]);
-        vm[i] = vcm;
+        const V vcm = vm[i];
         if (is_tip(c, i)) {
           va[i] = vb[i] = vcm;
           continue;
         }
-        va[i] = side_velocity(sides[2 * i], vcm);
-        vb[i] = side_velocity(sides[2 * i + 1], vcm);
+        va[i] = side_velocity(sides[2 * i], vcm, spin, c.above[i]);
+        vb[i] = side_velocity(sides[2 * i + 1], vcm, spin, c.below[i]);
       }
       for (std::size_t i = 0; i < np; ++i) {
         c.points[i] += dt * vm[i];
@@ -62,7 +72,8 @@ class CrackMotion : public FieldSlots<Dim, SF> {
  protected:
   using Base::block_nslots_, Base::classify, Base::cracks_, Base::extra_field, Base::G_, Base::grid_;
   using Base::kExtra, Base::kOverflow, Base::linear_nodes, Base::mass_, Base::momentum_, Base::node_block_;
-  using Base::node_position, Base::parallel_points;
+  using Base::node_position, Base::parallel_points, Base::pos0_, Base::pos_;
+  using Base::block_key_, Base::block_node_, Base::kin_, Base::xkin_;
   static constexpr double kProbe = 1e-3;  // cells: how far above/below a surface its probe sits
 
   CrackMotion(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin) : Base(m, grid, kin) {}
@@ -77,6 +88,72 @@ class CrackMotion : public FieldSlots<Dim, SF> {
     if (i + 1 < c.points.size()) t += (c.points[i + 1] - c.points[i]).normalized();
     const double l = t.norm();
     return l > 0.0 ? V(-t.y() / l, t.x() / l) : V::Zero();
+  }
+
+  // The crack's spin: the least-squares rigid rotation rate of its points moving with the
+  // centre-of-mass velocities, omega = sum (x - xm) x (v - vm) / sum |x - xm|^2 (zero for a crack that only
+  // translates or opens symmetrically). vm receives the points' centre-of-mass velocities.
+  double crack_spin(const crack::Crack2D& c, std::vector<V>& vm) const {
+    const std::size_t np = c.points.size();
+    vm.resize(np);
+#pragma omp parallel for schedule(static) if (parallel_points(np))
+    for (std::size_t i = 0; i < np; ++i) vm[i] = cm_velocity(c.points[i]);
+    V xm = V::Zero(), vbar = V::Zero();
+    for (std::size_t i = 0; i < np; ++i) xm += c.points[i], vbar += vm[i];
+    xm /= static_cast<double>(np), vbar /= static_cast<double>(np);
+    double num = 0.0, den = 0.0;
+    for (std::size_t i = 0; i < np; ++i) {
+      const V r = c.points[i] - xm, dv = vm[i] - vbar;
+      num += r.x() * dv.y() - r.y() * dv.x();
+      den += r.squaredNorm();
+    }
+    return den > 0.0 ? num / den : 0.0;
+  }
+  static V cross(double omega, const V& r) { return V(-omega * r.y(), omega * r.x()); }
+  // Every crack's spin and its points' centre-of-mass velocities (vm_) from the current momenta.
+  void update_spins() {
+    spin_.resize(cracks_.size());
+    vm_.resize(cracks_.size());
+    for (std::size_t ci = 0; ci < cracks_.size(); ++ci) spin_[ci] = crack_spin(cracks_[ci], vm_[ci]);
+  }
+  // The spin a field of block b follows (slot s, or -1 for the ordinary field): that of the crack its
+  // key names (the ordinary field: the crack of the block's first extra field).
+  double field_spin(int32_t b, int s) const {
+    const uint32_t key = block_key_[b * kExtra + (s < 0 ? 0 : s)];
+    const uint32_t code = key & 0xffffu ? key & 0xffffu : key >> 16;
+    return code ? spin_[(code - 1) / 2] : 0.0;
+  }
+  // The fields' nodal velocities at multi-field nodes, carried from each field's mass centre to the
+  // node with its crack's spin: v = p / m + omega x (x_node - centre). A field's momentum over its mass
+  // is the velocity of its mass centre, which sits up to half a cell off the node on its side of the
+  // crack; taken as the node's velocity, a body spinning at omega got a velocity gradient about 5/8 of
+  // the true one across the first cell row beside the crack, hence a spurious shear strain rate of about
+  // omega / 5 and stresses that grew to the MPa range in a few steps (aluminium at 1 rad/ms), which J
+  // and contact then read (docs/validation.md, cracks under rigid rotation). Exact for any rigid motion
+  // of the crack's neighbourhood; momenta and accelerations are unchanged (momentum is conserved).
+  void carry_nodal_velocities_to_nodes() {
+    for (std::size_t b = 0; b < block_node_.size(); ++b) {
+      const int64_t n = block_node_[b];
+      const V xn = node_position(n);
+      const int32_t bb = static_cast<int32_t>(b);
+      if (grid_.mass[n] > 0.0) {
+        const double w = field_spin(bb, -1);
+        if (w != 0.0) kin_[n].v += cross(w, xn - field_centre(n, -1));
+      }
+      for (int s = 0; s < block_nslots_[b]; ++s) {
+        const int32_t x = static_cast<int32_t>(b * kExtra + s);
+        if (!(mass_[x] > 0.0)) continue;
+        const double w = field_spin(bb, s);
+        if (w != 0.0) xkin_[x].v += cross(w, xn - field_centre(n, x));
+      }
+    }
+  }
+  // The mass centre of field xs at node n (the node itself where it has no mass sums: an ordinary
+  // field away from the crack, whose particles surround it).
+  V field_centre(int64_t n, int32_t xs) const {
+    if (xs >= 0) return mass_[xs] > 0.0 ? V(pos_[xs] / mass_[xs]) : node_position(n);
+    const int32_t b = node_block_[n];
+    return b >= 0 && grid_.mass[n] > 0.0 ? V(pos0_[b] / grid_.mass[n]) : node_position(n);
   }
 
   V cm_velocity(const V& x) const {
@@ -109,9 +186,10 @@ class CrackMotion : public FieldSlots<Dim, SF> {
     if (!side_valid_[ci]) find_side_fields(ci);
     return side_fields_[ci];
   }
-  // The velocity a surface follows: that of the field a virtual particle at its point's probe would
-  // use, interpolated at the surface (fallback where no such field has mass).
-  V side_velocity(const SideFields& sf, const V& fallback) const {
+  // The velocity a surface at x follows: that of the field a virtual particle at its point's probe
+  // would use, carried from each field's mass centre to x with the crack's spin, interpolated at the
+  // surface (fallback where no such field has mass).
+  V side_velocity(const SideFields& sf, const V& fallback, double spin, const V& x) const {
     V sum = V::Zero();
     double wsum = 0.0;
     for (int e = 0; e < sf.count; ++e) {
@@ -119,7 +197,10 @@ class CrackMotion : public FieldSlots<Dim, SF> {
       const int32_t xs = sf.field[e];
       const double w = sf.w[e];
       const double m = xs < 0 ? grid_.mass[n] : mass_[xs];
-      if (m > 0.0) sum += w * (xs < 0 ? grid_.momentum[n] : momentum_[xs]) / m, wsum += w;
+      if (m > 0.0) {
+        sum += w * (xs < 0 ? grid_.momentum[n] : momentum_[xs]) / m, wsum += w;
+        if (spin != 0.0) sum += w * cross(spin, x - field_centre(n, xs));
+      }
     }
     return wsum > 0.0 ? V(sum / wsum) : fallback;
   }
@@ -152,6 +233,8 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   }
 
   std::vector<std::vector<SideFields>> side_fields_;  // per crack, two per point (side_fields())
+  std::vector<double> spin_;                          // per crack: its spin (crack_spin, update_spins)
+  std::vector<std::vector<V>> vm_;                    // per crack: its points' centre-of-mass velocities
   std::vector<uint8_t> side_valid_;                   // per crack: side_fields_ are up to date
 };
 

@@ -117,10 +117,13 @@ class FieldSlots : public Classification<Dim, SF> {
     momentum_.assign(ns, V::Zero());
     force_.assign(ns, V::Zero());
     disp_.assign(ns, V::Zero());
+    pos_.assign(ns, V::Zero());
     xkin_.assign(ns, NodeKinematics<Dim>{V::Zero(), V::Zero()});
     normal_.swap(normals);
     volume_.assign(block_node_.size(), 0.0);
     disp0_.assign(block_node_.size(), V::Zero());
+    pos0_.assign(block_node_.size(), V::Zero());
+    rot_.assign(block_node_.size(), 0.0);
   }
 
   // The extra-field slot of node n holding `key`, or -1 when the node has none.
@@ -159,6 +162,11 @@ class FieldSlots : public Classification<Dim, SF> {
   std::vector<uint32_t> block_key_;  // per slot x = block * kExtra + s
   std::vector<double> mass_, volume_;  // per slot; volume: per block (all its fields)
   std::vector<V> momentum_, force_, disp_, normal_, disp0_, normals_next_;  // normal_: two per slot; disp0: per block
+  // Mass-weighted positions per field (pos_ per slot, pos0_ the ordinary field's, per block): a field's
+  // velocity is that of its mass centre, not of the node (crack_motion.hpp, contact.hpp); and, for
+  // displacement detection, the mass-weighted in-plane rotation of all the node's fields (per block).
+  std::vector<V> pos_, pos0_;
+  std::vector<double> rot_;
   std::vector<NodeKinematics<Dim>> xkin_;
   long overflow_ = 0;
   std::vector<std::vector<V>> seg_normal_;  // per crack and segment: segment_normal, for allocate_fields

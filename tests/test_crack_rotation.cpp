@@ -1,0 +1,146 @@
+// Cracks under rigid rotation (issue 14, items 1-3): a cracked body that spins keeps its energy, its
+// crack closed, and its J and K at zero, whatever the contact detection and law; a loaded DCB gives
+// the same J spinning as at rest. Figures and causes: docs/validation.md, "Cracks under rigid
+// rotation (issue 14)".
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "libmpm/crack/tip_parameters.hpp"
+#include "libmpm/io/crack_output.hpp"
+#include "libmpm/mpm/mpm_method.hpp"
+#include "support.hpp"
+
+namespace cleave {
+namespace {
+
+using nlohmann::json;
+
+// The issue's disk: aluminium (E = 70 GPa, nu = 0.33, rho = 2700 kg/m3), plane stress, R = 15 mm,
+// 1 mm cells, an interior crack 2a = 10 mm through the centre, no load, spinning about its centre at
+// omega (rad/ms). law "none" turns contact off.
+json spinning_disk(double omega, const std::string& law, const std::string& detection, const std::string& shape) {
+  json crack = {{"name", "interior"}, {"from", {-5, 0}}, {"to", {5, 0}}, {"segment_length", 1}};
+  crack["contact"] = {{"law", law}};
+  if (law != "none") crack["contact"]["detection"] = detection;
+  if (law == "friction") crack["contact"]["mu"] = 0.3;
+  return {{"units", {{"length", "mm"}, {"stress", "Pa"}, {"density", "g/cm3"}, {"velocity", "m/s"},
+                     {"time", "ms"}, {"inverse_time", "1/ms"}}},
+          {"analysis", {{"type", "plane_stress"}, {"thickness", 1}}},
+          {"resolution", 1},
+          {"grid", {{"min", {-20, -20}}, {"max", {20, 20}}}},
+          {"mpm", {{"shape_function", shape}, {"stress_update", "USAVG"}}},
+          {"materials", {test::material("aluminium", 70e9, 0.33, 2.7)}},
+          {"bodies", {{{"name", "disk"}, {"material", "aluminium"},
+                       {"shape", {{"type", "disk"}, {"center", {0, 0}}, {"radius", 15}}},
+                       {"angular_velocity", omega}, {"rotation_center", {0, 0}}}}},
+          {"cracks", {crack}},
+          {"time", {{"end", 1.0}, {"cfl", 0.5}}}};
+}
+
+struct SpinResult {
+  double drift = 0;        // max |E(t) - E(0)| / E(0)
+  double opening = 0;      // max |crack opening| (normal and tangential) over points and samples, in cells
+  double J = 0;            // max |J1| over samples and tips, J/m^2
+  double KI0 = 0, J0 = 0;  // max |K_I| and |J1| at t = 0 over both tips
+  double angle = 0;        // radians turned
+  double seconds = 0;      // wall time
+};
+
+// Runs the disk through `angle` radians; energies every step, openings and J every `every` steps.
+SpinResult spin(double omega, double angle, const std::string& law, const std::string& detection,
+                const std::string& shape, bool tips = true, int every = 20) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Model<2> m = build_model<2>(spinning_disk(omega, law, detection, shape));
+  auto st = make_stepper<2>(m);
+  const double h = m.grid.h;
+  SpinResult r;
+  const crack::TipSettings ts;  // the defaults: 2-cell circle, eq. 32
+  auto sample_tips = [&](bool first) {
+    for (const auto& t : st->crack_tip_parameters(ts)) {
+      r.J = std::max(r.J, std::fabs(t.J1));
+      if (first) r.KI0 = std::max(r.KI0, std::fabs(t.KI)), r.J0 = std::max(r.J0, std::fabs(t.J1));
+    }
+  };
+  if (tips) sample_tips(true);
+  const double e0 = st->global_state().total();
+  const long steps = std::lround(angle / (omega * 1e3) / m.dt);
+  for (long k = 1; k <= steps; ++k) {
+    if (st->step()) break;
+    const double e = st->global_state().total();
+    r.drift = std::max(r.drift, std::fabs(e - e0) / e0);
+    if (!std::isfinite(e) || r.drift > 1.0) break;  // the run loop would stop: energy blow-up
+    if (k % every == 0 || k == steps) {
+      const auto& c = m.cracks[0];
+      for (std::size_t i = 0; i < c.points.size(); ++i)
+        r.opening = std::max(r.opening, io::crack_opening(c, i).cwiseAbs().maxCoeff() / h);
+      if (tips) sample_tips(false);
+    }
+    r.angle = omega * 1e3 * st->time();
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+void print(const char* what, const SpinResult& r) {
+  std::printf("%-44s angle %.3f rad: energy drift %.3e, max opening %.2e cell, J(0) %.3e, K_I(0) %.3e, "
+              "max J %.3e J/m^2 (%.1f s)\n",
+              what, r.angle, r.drift, r.opening, r.J0, r.KI0, r.J, r.seconds);
+  std::fflush(stdout);
+}
+
+// Item 3: J and K are objective. The unloaded disk spinning at 1 rad/ms with contact off: J is evaluated
+// relative to the rigid motion of the contour's material, so J stays below 1 J/m^2 over one radian
+// (0.67 J/m^2; it was 1.06e4 J/m^2 with the absolute gradients and velocities) and K_I is zero at t = 0
+// (4.7e-2 Pa m^0.5, from J = 3e-14 J/m^2). The crack stays closed (4.8e-4 cell; 1.5e-2 cell before the
+// fields' velocities were carried to their nodes) and the energy constant (6.9e-5). About 3 s.
+TEST(CrackRotation, SpinningDiskHasNoJAndStaysClosedWithoutContact) {
+  const SpinResult r = spin(1.0, 1.0, "none", "volume", "linear");
+  print("w 1.0 rad/ms linear none", r);
+  EXPECT_NEAR(r.angle, 1.0, 1e-3);
+  EXPECT_LT(r.J0, 1e-6);
+  EXPECT_LT(r.KI0, 1.0);  // Pa m^0.5: zero up to the round-off of J
+  EXPECT_LT(r.J, 1.0);    // J/m^2 (the physical centrifugal J is about 0.01 J/m^2)
+  EXPECT_LT(r.opening, 0.01);
+  EXPECT_LT(r.drift, 1e-3);
+}
+
+// Items 1-2 where they are met (docs/validation.md lists every law and detection): volume detection
+// with frictionless contact and uGIMP, 1 rad/ms over one radian: energy within 2.6e-4 (2.7e-3 before),
+// opening 1.6e-3 cell. About 6 s.
+TEST(CrackRotation, SpinningDiskKeepsItsEnergyWithVolumeDetectionFrictionless) {
+  const SpinResult r = spin(1.0, 1.0, "frictionless", "volume", "ugimp", false);
+  print("w 1.0 rad/ms ugimp volume frictionless", r);
+  EXPECT_NEAR(r.angle, 1.0, 1e-3);
+  EXPECT_LT(r.drift, 1e-3);
+  EXPECT_LT(r.opening, 0.01);
+}
+
+// The study behind the figures: every law and detection, linear and uGIMP, at 0.1 and 1 rad/ms.
+// Environment: CLEAVE_SPIN_ANGLE (radians, default 1), CLEAVE_SPIN_OMEGA (rad/ms; default both).
+// Run with --gtest_also_run_disabled_tests --gtest_filter='CrackRotation.DISABLED_Study'.
+TEST(CrackRotation, DISABLED_Study) {
+  const double angle = std::getenv("CLEAVE_SPIN_ANGLE") ? std::atof(std::getenv("CLEAVE_SPIN_ANGLE")) : 1.0;
+  std::vector<double> omegas = {1.0, 0.1};
+  if (std::getenv("CLEAVE_SPIN_OMEGA")) omegas = {std::atof(std::getenv("CLEAVE_SPIN_OMEGA"))};
+  for (double w : omegas)
+    for (const char* shape : {"linear", "ugimp"}) {
+      char what[128];
+      std::snprintf(what, sizeof what, "w %.1f rad/ms %s none", w, shape);
+      print(what, spin(w, angle, "none", "volume", shape));
+      for (const char* det : {"volume", "displacement"})
+        for (const char* law : {"stick", "frictionless", "friction"}) {
+          std::snprintf(what, sizeof what, "w %.1f rad/ms %s %s %s", w, shape, det, law);
+          print(what, spin(w, angle, law, det, shape));
+        }
+    }
+}
+
+}  // namespace
+}  // namespace cleave
