@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
     }
   }
   nlohmann::json scene = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");
-  scene["grid"]["cell_size"] = cell;
+  scene["resolution"] = cell;  // the scene's one discretisation key (scene units)
   scene["mpm"]["shape_function"] = "ugimp";
   scene["cracks"][0]["segment_length"] = cell;
   if (!only.empty()) {
