@@ -126,8 +126,7 @@ Model<Dim> build_model(const json& scene) {
   {
     static const json no_grid = json::object();  // every grid key is optional with "resolution"
     ObjectReader r(top.has("grid") ? scene["grid"] : no_grid, "grid", {"cell_size", "min", "max", "margin_cells"});
-    const double h = scene::read_resolution(scene, "grid", "cell_size", "the grid's cell size", L);
-    const std::string h_key = top.has("resolution") ? "resolution" : "grid.cell_size";
+    const auto [h, h_key] = scene::read_resolution(scene, "grid", "cell_size", "the grid's cell size", L);
     m.grid.h = h;
     if (r.has("min") != r.has("max"))
       throw SceneError(r.has("min") ? "grid.max" : "grid.min", "give both grid.min and grid.max, or neither");

@@ -57,12 +57,14 @@ PdSystem<Dim> build_pd_system(const json& scene) {
 
   // --- peridynamics ---------------------------------------------------------------------------
   std::vector<std::pair<Vec<Dim>, Vec<Dim>>> no_fail;
-  const std::string dx_key = top.has("resolution") ? "resolution" : "peridynamics.spacing";
+  std::string dx_key;  // the scene key the lattice spacing came from, for the errors about it
   {
     static const json no_section = json::object();  // every key is optional with "resolution"
     ObjectReader r(top.has("peridynamics") ? scene["peridynamics"] : no_section, "peridynamics", {"spacing", "horizon_factor", "no_fail", "crack_tips",
                                                            "tip_damage"});
-    m.dx = scene::read_resolution(scene, "peridynamics", "spacing", "the lattice spacing", L);
+    const auto spacing = scene::read_resolution(scene, "peridynamics", "spacing", "the lattice spacing", L);
+    m.dx = spacing.length;
+    dx_key = spacing.key;
     m.horizon_factor = r.integer_or("horizon_factor", 3, 1, 12);
     m.delta = m.horizon_factor * m.dx;
     m.tip_threshold = r.number_or("tip_damage", 0.3);

@@ -7,7 +7,7 @@
 
 namespace cleave::scene {
 
-double read_resolution(const nlohmann::json& scene, const std::string& section_path, const char* key,
+Resolution read_resolution(const nlohmann::json& scene, const std::string& section_path, const char* key,
                        const std::string& meaning, double length) {
   const std::string own = section_path + "." + key;
   const bool has_own = scene.contains(section_path) && scene[section_path].is_object() &&
@@ -22,7 +22,7 @@ double read_resolution(const nlohmann::json& scene, const std::string& section_p
   const double h = ObjectReader::number_of(v, path) * length;
   if (!(h > 0.0)) throw SceneError(path, "must be positive (got " + v.dump() + ")");
   if (!std::isfinite(h)) throw SceneError(path, "overflows after unit scaling (got " + v.dump() + ")");
-  return h;
+  return {h, path};
 }
 
 }  // namespace cleave::scene
