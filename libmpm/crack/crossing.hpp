@@ -58,6 +58,24 @@ inline void two_sum(double a, double b, double& s, double& e) {
   e = (a - av) + (b - bv);
 }
 
+// An exact sum of doubles as a nonoverlapping expansion (Shewchuk's Grow-Expansion): add(t) keeps
+// the sum exact, sign() is the sign of its largest nonzero component. N: the most terms added.
+template <int N>
+struct Expansion {
+  double h[N];
+  int m = 0;
+  void add(double t) {
+    double q = t;
+    for (int i = 0; i < m; ++i) two_sum(q, h[i], q, h[i]);
+    h[m++] = q;
+  }
+  int sign() const {
+    for (int i = m - 1; i >= 0; --i)
+      if (h[i] != 0.0) return sgn(h[i]);
+    return 0;
+  }
+};
+
 // Exact sign of eq. 33 by expansion arithmetic: the six products of eq. 33 expanded, each split
 // exactly into value + error with fma, summed exactly into a nonoverlapping expansion (Shewchuk's
 // Grow-Expansion) whose largest nonzero component carries the sign. Only reached for (nearly)
@@ -65,21 +83,13 @@ inline void two_sum(double a, double b, double& s, double& e) {
 inline int area_sign_exact(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c) {
   const double f[6][2] = {{a.x(), b.y()}, {-a.x(), c.y()}, {b.x(), c.y()},
                           {-b.x(), a.y()}, {c.x(), a.y()}, {-c.x(), b.y()}};
-  double h[12];
-  int m = 0;
-  auto grow = [&](double t) {
-    double q = t;
-    for (int i = 0; i < m; ++i) two_sum(q, h[i], q, h[i]);
-    h[m++] = q;
-  };
+  Expansion<12> sum;
   for (const auto& p : f) {
     const double prod = p[0] * p[1];
-    grow(std::fma(p[0], p[1], -prod));  // exact rounding error of the product
-    grow(prod);
+    sum.add(std::fma(p[0], p[1], -prod));  // exact rounding error of the product
+    sum.add(prod);
   }
-  for (int i = m - 1; i >= 0; --i)
-    if (h[i] != 0.0) return sgn(h[i]);
-  return 0;
+  return sum.sign();
 }
 
 }  // namespace detail

@@ -10,7 +10,6 @@
 #include "libmpm/material/linear_elastic.hpp"
 #include "libmpm/method/describe.hpp"
 #include "libmpm/mpm/crack_fields.hpp"
-#include "libmpm/mpm/crack_tip_eval.hpp"
 #include "libmpm/core/parallel.hpp"
 #include "libmpm/mpm/strip_order.hpp"
 #include "libmpm/mpm/stencil.hpp"
@@ -34,36 +33,30 @@ class MpmStepper final : public Stepper<Dim> {
     all_linear_elastic_ = true;
     for (const auto& mat : m.materials)
       all_linear_elastic_ = all_linear_elastic_ && dynamic_cast<const LinearElastic<Dim>*>(mat.get()) != nullptr;
-    if constexpr (Dim == 2)
-      if (!m.cracks.empty()) cf_ = std::make_unique<CrackFields<SF>>(m, grid_, kin_);
+    if (!m.cracks.empty()) cf_ = std::make_unique<CrackFields<Dim, SF>>(m, grid_, kin_);
   }
 
   std::string take_warning() override {
-    if constexpr (Dim == 2) {
-      if (!cf_) return {};
-      const long o = cf_->take_overflow();
-      if (o > 0)
-        return "step " + std::to_string(step_) + ": " + std::to_string(o) +
-               " particle-node pair(s) needed a fifth velocity field at a node (more than two cracks meet there, or "
-               "one line crosses three cracks); they used the node's ordinary field";
-    }
+    if (!cf_) return {};
+    const long o = cf_->take_overflow();
+    if (o > 0)
+      return "step " + std::to_string(step_) + ": " + std::to_string(o) +
+             " particle-node pair(s) needed a fifth velocity field at a node (more than two cracks meet there, or "
+             "one line crosses three cracks); they used the node's ordinary field";
     return {};
   }
 
   std::vector<crack::TipRecord> crack_tip_parameters(const crack::TipSettings& ts) override {
-    if constexpr (Dim == 2) {
-      if (!cf_) return {};
-      // A particle's acceleration in the last step: Task 5's nodal accelerations, each node's from
-      // the field the particle uses there.
-      return evaluate_crack_tips<SF>(m_, ts, [&](std::size_t p) {
-        St s;
-        s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
-        Vec<2> a = Vec<2>::Zero();
-        s.for_each_weight([&](int64_t n, double w) { a += w * cf_->kin(n, cf_->field_of(p, n, node_position(n))).a; });
-        return a;
-      });
-    }
-    return {};
+    if (!cf_) return {};
+    // A particle's acceleration in the last step: Task 5's nodal accelerations, each node's from
+    // the field the particle uses there.
+    return cf_->tip_parameters(m_, ts, [&](std::size_t p) {
+      St s;
+      s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
+      Vec<Dim> a = Vec<Dim>::Zero();
+      s.for_each_weight([&](int64_t n, double w) { a += w * cf_->kin(n, cf_->field_of(p, n, node_position(n))).a; });
+      return a;
+    });
   }
 
   double time() const override { return time_; }
@@ -87,8 +80,7 @@ class MpmStepper final : public Stepper<Dim> {
     skip_ = nullptr;
     near_index_ = nullptr;
     bool ordered = false;
-    if constexpr (Dim == 2)
-      if (cf_) {  // Task 1, line crossing: fields of the particles near cracks
+    if (cf_) {  // Task 1, line crossing: fields of the particles near cracks
         {
           CLEAVE_TIME(CrackIndex);
           cf_->prepare_index();
@@ -129,11 +121,10 @@ class MpmStepper final : public Stepper<Dim> {
       nodal_velocities();
     }
     if (late_update) stress_pass<true, false, true>(dts);  // Task 6a / 6c
-    if constexpr (Dim == 2)
-      if (cf_) {
-        CLEAVE_TIME(CrackMotion);
-        cf_->move_cracks(dt);  // Task 7
-      }
+    if (cf_) {
+      CLEAVE_TIME(CrackMotion);
+      cf_->move_cracks(dt);  // Task 7
+    }
 
     external_work_ += 0.5 * dt * (traction_power_before + traction_power());
     time_ += dt;
@@ -175,11 +166,10 @@ class MpmStepper final : public Stepper<Dim> {
         grid_.momentum[n] += mv * w;
       });
     };
-    if constexpr (Dim == 2)
-      if (cf_) {
-        const int32_t* nk = near_index_;
-        return order_.scatter(far, [&](std::size_t p) { cf_->extrapolate(nk[p], cf_->stencil(nk[p])); });
-      }
+    if (cf_) {
+      const int32_t* nk = near_index_;
+      return order_.scatter(far, [&](std::size_t p) { cf_->extrapolate(nk[p], cf_->stencil(nk[p])); });
+    }
     order_.scatter(far);
   }
 
@@ -223,11 +213,10 @@ class MpmStepper final : public Stepper<Dim> {
 
   // Contact at multi-field nodes whenever momenta were (re)computed (Tasks 2 and 6c).
   void crack_contact() {
-    if constexpr (Dim == 2)
-      if (cf_) {
-        CLEAVE_TIME(Contact);
-        cf_->contact(m_.dt);
-      }
+    if (cf_) {
+      CLEAVE_TIME(Contact);
+      cf_->contact(m_.dt);
+    }
   }
 
   // Updating stresses and strains (Subtasks 2-3: velocity gradient eq. 36 from the nodal velocities
@@ -242,7 +231,7 @@ class MpmStepper final : public Stepper<Dim> {
       if constexpr (update) {
         Mat<Dim> L = Mat<Dim>::Zero();
         s.for_each([&](int64_t n, double, const Vec<Dim>& g) { L.noalias() += kin_[n].v * g.transpose(); });
-        if constexpr (Dim == 2) P_.rotation[p] += 0.5 * (L(1, 0) - L(0, 1)) * dts;  // spin, for the renderer
+        integrate_spin(P_, p, L, dts);
         update_stress(p, L, dts);
       }
       if constexpr (scatter_force) {
@@ -256,33 +245,32 @@ class MpmStepper final : public Stepper<Dim> {
     };
     CLEAVE_TIME(Stress);
     if constexpr (scatter_force) std::fill(grid_.force.begin(), grid_.force.end(), Vec<Dim>::Zero());
-    if constexpr (Dim == 2)
-      if (cf_) {  // particles near cracks: the same with each pair's velocity field
-        const auto& near = cf_->near_list();
-        auto near_body = [&](std::size_t k) CLEAVE_INLINE {  // (stencils: the start-of-step ones, cached)
-          const std::size_t p = static_cast<std::size_t>(near[k]);
-          if constexpr (update) {
-            Mat<Dim> L = Mat<Dim>::Zero();
-            cf_->for_each_pair(k, cf_->stencil(k), [&](int64_t n, int32_t x, double, const Vec<Dim>& g) {
-              L.noalias() += cf_->kin(n, x).v * g.transpose();
-            });
-            P_.rotation[p] += 0.5 * (L(1, 0) - L(0, 1)) * dts;
-            update_stress(p, L, dts);
-          }
-          if constexpr (scatter_force) {
-            const Sym<Dim> vs = P_.volume0[p] * P_.stress[p];
-            cf_->for_each_pair(k, cf_->stencil(k), [&](int64_t n, int32_t x, double, const Vec<Dim>& g) {
-              cf_->force(n, x) -= sym_dot<Dim>(vs, g);
-            });
-          }
-          if constexpr (move) {
-            P_.x[p] += dx_[p];
-            P_.u[p] += dx_[p];
-          }
-        };
-        if constexpr (scatter_force) return scatter_pass(body, near_body);
-        else return gather_pass(body, near_body);
-      }
+    if (cf_) {  // particles near cracks: the same with each pair's velocity field
+      const auto& near = cf_->near_list();
+      auto near_body = [&](std::size_t k) CLEAVE_INLINE {  // (stencils: the start-of-step ones, cached)
+        const std::size_t p = static_cast<std::size_t>(near[k]);
+        if constexpr (update) {
+          Mat<Dim> L = Mat<Dim>::Zero();
+          cf_->for_each_pair(k, cf_->stencil(k), [&](int64_t n, int32_t x, double, const Vec<Dim>& g) {
+            L.noalias() += cf_->kin(n, x).v * g.transpose();
+          });
+          integrate_spin(P_, p, L, dts);
+          update_stress(p, L, dts);
+        }
+        if constexpr (scatter_force) {
+          const Sym<Dim> vs = P_.volume0[p] * P_.stress[p];
+          cf_->for_each_pair(k, cf_->stencil(k), [&](int64_t n, int32_t x, double, const Vec<Dim>& g) {
+            cf_->force(n, x) -= sym_dot<Dim>(vs, g);
+          });
+        }
+        if constexpr (move) {
+          P_.x[p] += dx_[p];
+          P_.u[p] += dx_[p];
+        }
+      };
+      if constexpr (scatter_force) return scatter_pass(body, near_body);
+      else return gather_pass(body, near_body);
+    }
     if constexpr (scatter_force) order_.scatter(body);
     else gather_pass(body, [](std::size_t) {});
   }
@@ -311,11 +299,10 @@ class MpmStepper final : public Stepper<Dim> {
         s.for_each_weight([&](int64_t n, double w) {
           double mass = grid_.mass[n];
           Vec<Dim>* f = &grid_.force[n];
-          if constexpr (Dim == 2)
-            if (cf_ && skip_[p]) {
-              const int32_t x = cf_->field_of(p, n, node_position(n));
-              mass = cf_->mass(n, x), f = &cf_->force(n, x);
-            }
+          if (cf_ && skip_[p]) {
+            const int32_t x = cf_->field_of(p, n, node_position(n));
+            mass = cf_->mass(n, x), f = &cf_->force(n, x);
+          }
           if (!(mass > 0.0)) return;
           target[count] = f, wt[count] = w, ++count;
           wsum += w;
@@ -333,8 +320,7 @@ class MpmStepper final : public Stepper<Dim> {
         if (grid_.mass[n] <= 0.0) continue;
         grid_.force[n] += grid_.mass[n] * m_.gravity - kappa * grid_.momentum[n];
       }
-      if constexpr (Dim == 2)
-        if (cf_) cf_->body_force_and_damping(m_.gravity, kappa);
+      if (cf_) cf_->body_force_and_damping(m_.gravity, kappa);
     }
     const auto& C = m_.conditions;
     for (std::size_t c = 0; c < C.node.size(); ++c)
@@ -344,8 +330,7 @@ class MpmStepper final : public Stepper<Dim> {
           external_work_ -= grid_.force[C.node[c]][d] * C.velocity[c][d] * m_.dt;
           grid_.force[C.node[c]][d] = 0.0;
         }
-    if constexpr (Dim == 2)
-      if (cf_) external_work_ -= cf_->zero_prescribed_forces(C) * m_.dt;
+    if (cf_) external_work_ -= cf_->zero_prescribed_forces(C) * m_.dt;
   }
 
   // Task 4: p' = p + dt f (eq. 29), and the nodal velocity and acceleration Task 5 gathers.
@@ -360,8 +345,7 @@ class MpmStepper final : public Stepper<Dim> {
       kin_[n].v = grid_.momentum[n] * inv_m;
       kin_[n].a = grid_.force[n] * inv_m;
     }
-    if constexpr (Dim == 2)
-      if (cf_) cf_->update_momenta(dt);  // with contact and back-computed forces
+    if (cf_) cf_->update_momenta(dt);  // with contact and back-computed forces
   }
 
   // Task 5 (eq. 30): particle velocities, and position increments that are applied now or, when a
@@ -407,30 +391,29 @@ class MpmStepper final : public Stepper<Dim> {
       CLEAVE_TIME(Task5);
       if (reextrapolate) std::fill(grid_.momentum.begin(), grid_.momentum.end(), Vec<Dim>::Zero());
       bool done = false;
-      if constexpr (Dim == 2)
-        if (cf_) {
-          if (reextrapolate) cf_->clear_momenta();
-          const auto& near = cf_->near_list();
-          auto near_body = [&](std::size_t k) CLEAVE_INLINE {
-            const std::size_t p = static_cast<std::size_t>(near[k]);
-            Vec<Dim> a = Vec<Dim>::Zero(), v = Vec<Dim>::Zero();
-            cf_->for_each_pair_weight(k, cf_->stencil(k), [&](int64_t n, int32_t x, double w) {
-              const auto& kn = cf_->kin(n, x);
-              a += kn.a * w;
-              v += kn.v * w;
-            });
-            P_.v[p] += dt * a;
-            if (reextrapolate) {  // Task 6c
-              const Vec<Dim> mv = P_.mass[p] * P_.v[p];
-              cf_->for_each_pair_weight(k, cf_->stencil(k),
-                                        [&](int64_t n, int32_t x, double w) { cf_->momentum(n, x) += mv * w; });
-            }
-            finish(p, dt * v);
-          };
-          if (reextrapolate) scatter_pass(body, near_body);
-          else gather_pass(body, near_body);
-          done = true;
-        }
+      if (cf_) {
+        if (reextrapolate) cf_->clear_momenta();
+        const auto& near = cf_->near_list();
+        auto near_body = [&](std::size_t k) CLEAVE_INLINE {
+          const std::size_t p = static_cast<std::size_t>(near[k]);
+          Vec<Dim> a = Vec<Dim>::Zero(), v = Vec<Dim>::Zero();
+          cf_->for_each_pair_weight(k, cf_->stencil(k), [&](int64_t n, int32_t x, double w) {
+            const auto& kn = cf_->kin(n, x);
+            a += kn.a * w;
+            v += kn.v * w;
+          });
+          P_.v[p] += dt * a;
+          if (reextrapolate) {  // Task 6c
+            const Vec<Dim> mv = P_.mass[p] * P_.v[p];
+            cf_->for_each_pair_weight(k, cf_->stencil(k),
+                                      [&](int64_t n, int32_t x, double w) { cf_->momentum(n, x) += mv * w; });
+          }
+          finish(p, dt * v);
+        };
+        if (reextrapolate) scatter_pass(body, near_body);
+        else gather_pass(body, near_body);
+        done = true;
+      }
       if (!done) {
         if (reextrapolate) order_.scatter(body);
         else gather_pass(body, [](std::size_t) {});
@@ -450,8 +433,7 @@ class MpmStepper final : public Stepper<Dim> {
     for (std::size_t c = 0; c < C.node.size(); ++c)
       for (int d = 0; d < Dim; ++d)
         if (C.mask[c] & (1u << d)) grid_.momentum[C.node[c]][d] = grid_.mass[C.node[c]] * C.velocity[c][d];
-    if constexpr (Dim == 2)
-      if (cf_) cf_->apply_momentum_conditions(C);
+    if (cf_) cf_->apply_momentum_conditions(C);
   }
 
   // Subtask 1: nodal velocities from the latest momenta (eq. 34).
@@ -461,8 +443,7 @@ class MpmStepper final : public Stepper<Dim> {
 #pragma omp parallel for schedule(static) if (worth_parallel(nn))
     for (std::size_t n = 0; n < nn; ++n)
       if (grid_.mass[n] > 0.0) kin_[n].v = grid_.momentum[n] / grid_.mass[n];
-    if constexpr (Dim == 2)
-      if (cf_) cf_->nodal_velocities();
+    if (cf_) cf_->nodal_velocities();
   }
 
   Vec<Dim> node_position(int64_t n) const {
@@ -500,8 +481,8 @@ class MpmStepper final : public Stepper<Dim> {
   double inv_h_;
   GridFields<Dim> grid_;
   std::vector<NodeKinematics<Dim>> kin_;
-  // 2D explicit cracks: extra velocity fields, contact, crack motion (null without cracks).
-  std::unique_ptr<CrackFields<SF>> cf_;
+  // Explicit cracks: extra velocity fields, contact, crack motion (null without cracks).
+  std::unique_ptr<CrackFields<Dim, SF>> cf_;
   const uint8_t* skip_ = nullptr;         // near-crack flags: those particles take the crack paths
   const int32_t* near_index_ = nullptr;  // per particle: index in the crack module's near list, or -1
   std::vector<Vec<Dim>> dx_;

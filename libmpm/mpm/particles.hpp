@@ -41,4 +41,11 @@ struct Particles {
   }
 };
 
+// The in-plane rotation of particle p advanced by the spin of its velocity gradient L over dts (2D,
+// for the renderer and for displacement contact detection); 3D particles carry no rotation.
+template <int Dim>
+CLEAVE_INLINE inline void integrate_spin(Particles<Dim>& P, std::size_t p, const Mat<Dim>& L, double dts) {
+  if constexpr (Dim == 2) P.rotation[p] += 0.5 * (L(1, 0) - L(0, 1)) * dts;
+}
+
 }  // namespace cleave
