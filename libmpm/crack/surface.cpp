@@ -22,9 +22,8 @@ std::vector<std::array<int32_t, Dim - 1>> Surface<Dim>::boundary() const {
   std::vector<Facet> order;   // each facet as first met (simplex order, orientation kept)
   for (const auto& s : simplices)
     for (int k = 0; k < Dim; ++k) {
-      Facet f;  // the facet opposite vertex k
-      for (int j = 0, n = 0; j < Dim; ++j)
-        if (j != k) f[n++] = s[j];
+      Facet f;  // the facet opposite vertex k, in the simplex's cyclic order (3D: edges run as the triangle does)
+      for (int n = 0; n + 1 < Dim; ++n) f[n] = s[(k + 1 + n) % Dim];
       Facet key = f;
       std::sort(key.begin(), key.end());
       if (uses[key]++ == 0) order.push_back(f);
@@ -52,29 +51,17 @@ bool segment_crosses(const Surface<Dim>& s, const Vec<Dim>& a, const Vec<Dim>& b
 }
 
 template <>
-std::vector<Surface<2>> read_surfaces<2>(const nlohmann::json& cracks, const std::string& key_path, double L) {
+std::vector<Surface<2>> read_surfaces<2>(const nlohmann::json& cracks, const std::string& key_path, double L,
+                                         const SurfaceMeshing&) {
   std::vector<Surface<2>> out;
   for (auto& c : parse_cracks(cracks, key_path, L)) out.push_back(static_cast<Surface<2>&&>(c));  // the geometry alone
   return out;
 }
 
-// Triangles as declared (each with its own three vertices): the crossing test needs no shared
-// vertices. Fronts of such a soup are not meaningful; meshed surfaces merge their vertices.
 template <>
-std::vector<Surface<3>> read_surfaces<3>(const nlohmann::json& cracks, const std::string& key_path, double L) {
-  std::vector<Surface<3>> out;
-  for (const auto& c : parse_cracks3d(cracks, key_path, L)) {
-    Surface<3> s;
-    s.name = c.name;
-    for (const auto& T : c.triangles) {
-      const auto n = static_cast<int32_t>(s.points.size());
-      s.points.insert(s.points.end(), T.begin(), T.end());
-      s.simplices.push_back({n, n + 1, n + 2});
-    }
-    s.update_extent();
-    out.push_back(std::move(s));
-  }
-  return out;
+std::vector<Surface<3>> read_surfaces<3>(const nlohmann::json& cracks, const std::string& key_path, double L,
+                                         const SurfaceMeshing& meshing) {
+  return parse_surfaces3d(cracks, key_path, L, meshing);
 }
 
 template struct Surface<2>;

@@ -26,7 +26,7 @@ struct Surface {
 
   void update_extent();
   // The fronts: facets ((Dim-1)-tuples of point indices) that belong to one simplex only, in
-  // simplex order (2D: the end points; 3D: the boundary edges).
+  // simplex order (2D: the end points; 3D: the boundary edges, each running as in its triangle).
   std::vector<std::array<int32_t, Dim - 1>> boundary() const;
 };
 
@@ -36,9 +36,18 @@ struct Surface {
 template <int Dim>
 bool segment_crosses(const Surface<Dim>& s, const Vec<Dim>& a, const Vec<Dim>& b);
 
-// The scene's "cracks" as surfaces: 2D polylines (parse_cracks, crack2d.hpp), 3D triangles or quads
-// (parse_cracks3d, surface3d.hpp). SceneError names the key path.
+// How a method wants its 3D surfaces meshed: generated shapes at `default_size` (m) unless the
+// crack gives "element_size"; given triangles refined to that size too when `refine_given` (MPM's
+// crack particles sit at the vertices), else kept as given (peridynamics only cuts bonds with them).
+struct SurfaceMeshing {
+  double default_size = 0.0;
+  bool refine_given = false;
+};
+
+// The scene's "cracks" as surfaces: 2D polylines (parse_cracks, crack2d.hpp), 3D triangle meshes
+// (parse_surfaces3d, surface3d.hpp). SceneError names the key path.
 template <int Dim>
-std::vector<Surface<Dim>> read_surfaces(const nlohmann::json& cracks, const std::string& key_path, double length_scale);
+std::vector<Surface<Dim>> read_surfaces(const nlohmann::json& cracks, const std::string& key_path, double length_scale,
+                                        const SurfaceMeshing& meshing);
 
 }  // namespace cleave::crack

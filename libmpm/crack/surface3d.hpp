@@ -1,32 +1,33 @@
-// 3D crack surfaces as the scene declares them (docs/scenes.md, "Peridynamics": triangles or a
-// quad), and the segment-against-triangle test. crack/surface.hpp turns them into the
-// dimension-free Surface<3> that every method reads.
+// 3D crack surfaces as the scene declares them (docs/scenes.md, "3D crack surfaces"): explicit
+// triangles, a quad, an indexed mesh, a generated rectangle or ellipse, or a mesh file; meshed into
+// triangles of about an element size with shared vertices (crack/mesh3d.hpp) and checked, as the
+// dimension-free Surface<3> that every method reads. Also the segment-against-triangle test.
 #pragma once
-#include <array>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
 #include "libmpm/core/types.hpp"
+#include "libmpm/crack/surface.hpp"
 
 namespace cleave::crack {
 
-struct Crack3D {
-  std::string name;
-  std::vector<std::array<Vec<3>, 3>> triangles;  // SI
-  Vec<3> lo, hi;                                  // extent of all vertices
-};
-
-// Parses the 3D "cracks" array: each entry is an object with "name" and exactly one of
-//   "triangles": [[[x,y,z],[x,y,z],[x,y,z]], ...]    any number of triangles (>= 1)
-//   "quad": [[x,y,z] x 4]                             a planar-or-not quadrilateral p0 p1 p2 p3,
-//                                                     split into (p0,p1,p2) and (p0,p2,p3)
-// Coordinates are in the scene's length unit (length_scale converts to metres). Throws
-// SceneError naming the key path for: not an array/object, missing or duplicate name, both or
-// neither form, wrong point counts, non-finite numbers, a degenerate (zero-area) triangle, unknown keys.
-std::vector<Crack3D> parse_cracks3d(const nlohmann::json& cracks, const std::string& key_path,
-                                    double length_scale);
+// Each entry is an object with "name", optional "element_size" (scene length unit) and exactly
+// one of
+//   "triangles": [[[x,y,z],[x,y,z],[x,y,z]], ...]   triangles vertex by vertex (shared ones merged)
+//   "quad": [p0, p1, p2, p3]                       split into (p0,p1,p2) and (p0,p2,p3)
+//   "mesh": {"points": [[x,y,z], ...], "triangles": [[i,j,k], ...]}   an indexed mesh
+//   "rectangle": {"corner": p, "edges": [e1, e2]}  the parallelogram corner + s e1 + t e2
+//   "ellipse": {"center": p, "normal": n, "major_axis": d, "semi_axes": [a, b]} (or "radius": r)
+//   "file": "crack.stl" | "crack.msh"              STL (ASCII/binary) or Gmsh ASCII 2.2/4.1
+// Coordinates are in the scene's length unit (length_scale converts to metres); the triangles'
+// orientation (normal (b - a) x (c - a), or the generated shape's normal) is the crack's above
+// side. Throws SceneError naming the key path and the triangle or file for: a wrong form or point
+// count, non-finite numbers, a degenerate triangle, a non-manifold edge, inconsistent orientation,
+// a self-intersecting surface, an unreadable mesh file, unknown keys, a duplicate name.
+std::vector<Surface<3>> parse_surfaces3d(const nlohmann::json& cracks, const std::string& key_path,
+                                         double length_scale, const SurfaceMeshing& meshing);
 
 // Closed segment p-q against closed triangle (a, b, c): true when they share a point, except that
 // a segment lying in the triangle's plane never counts (it cannot separate the two sides).

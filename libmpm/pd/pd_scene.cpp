@@ -232,7 +232,7 @@ PdSystem<Dim> build_pd_system(const json& scene) {
   for (std::size_t k = 0; k < bl.size(); ++k)
     if (P.body[bl.i[k]] != P.body[bl.j[k]]) keep[k] = 0;
   if (top.has("cracks")) {
-    for (const auto& c : crack::read_surfaces<Dim>(scene["cracks"], "cracks", L)) {
+    for (const auto& c : crack::read_surfaces<Dim>(scene["cracks"], "cracks", L, {m.dx, false})) {
       std::size_t cut = 0;
       for (std::size_t k = 0; k < bl.size(); ++k)
         if (keep[k] && crack::segment_crosses<Dim>(c, P.x0[bl.i[k]], P.x0[bl.j[k]])) keep[k] = 0, ++cut;
