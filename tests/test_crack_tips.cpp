@@ -396,6 +396,47 @@ DcbResult run_dcb(double a_mm, std::vector<double> radii) {
   return r;
 }
 
+// Issue 14, item 6: NairnMPM's DCB input ends its crack half a cell short of the loaded edge; a
+// ligament narrower than a cell joined the arms there (J read 0-3 J/m^2, no warning). The end is
+// carried through the edge, becomes a mouth, and the run matches the crack given through the edge.
+TEST(CrackTipDcb, ACrackEndingHalfACellShortOfTheLoadedEdgeCutsThroughLikeOneGivenThroughIt) {
+  auto run = [](double from_mm, std::vector<std::string>* warnings, Vec<2>* start, const char* tips = "auto") {
+    json s = scene("dcb_crack.json");
+    s["cracks"][0]["from"] = {from_mm, 0};
+    s["cracks"][0]["tips"] = tips;
+    s["time"]["end"] = 0.1;
+    Model<2> m = build_model<2>(s);
+    if (warnings) *warnings = m.warnings;
+    if (start) *start = m.cracks[0].points[0];
+    auto st = make_stepper<2>(m);
+    while (st->time() < m.end_time - 1e-9 * m.dt) EXPECT_FALSE(st->step());
+    crack::TipSettings ts;
+    const auto t = st->crack_tip_parameters(ts);
+    EXPECT_FALSE(t.empty());
+    return std::make_pair(t.empty() ? 0.0 : t.back().J1, test::dcb_load_point_opening(m.particles));  // the end tip
+  };
+  std::vector<std::string> warnings;
+  Vec<2> start;
+  const auto through = run(-2.0, nullptr, nullptr);  // the data scene: 2 mm outside the body
+  const auto short_end = run(1.0, &warnings, &start);  // half a 2 mm cell inside the edge x = 0
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("crack 'midplane': its start lies 0.001 m (0.5 cell) from a free edge"), std::string::npos)
+      << warnings[0];
+  EXPECT_NE(warnings[0].find("carried on through the edge"), std::string::npos) << warnings[0];
+  EXPECT_LT(start.x(), 0.0);  // beyond the body's edge at x = 0
+  EXPECT_GT(through.first, 0.0);
+  EXPECT_NEAR(short_end.first / through.first, 1.0, 1e-3);    // J at the real tip
+  EXPECT_NEAR(short_end.second / through.second, 1.0, 1e-3);  // the arms' opening
+  // A start that the scene names as a tip stays where it is, with a warning: the ligament then
+  // holds the arms together and J at the real tip is a small part of the cut specimen's.
+  const auto joined = run(1.0, &warnings, nullptr, "both");
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("it stays a tip as \"tips\" says, and the faces stay joined there"), std::string::npos);
+  std::printf("DCB at 0.1 s: J = %.5g J/m^2 with the crack through the edge, %.5g carried through from half a cell "
+              "short, %.5g left half a cell short\n", through.first, short_end.first, joined.first);
+  EXPECT_LT(joined.first, 0.1 * through.first);
+}
+
 // Validation 2. The scene's 2 mm cells put 9 cells across an arm: at the default 2-cell contour J
 // is +5.9 % above beam theory and +4.7 % above the compliance derivative (the near-tip field of
 // the discrete solution; J converges to the compliance derivative as the contour grows: +2.2 % at

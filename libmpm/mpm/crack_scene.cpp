@@ -3,6 +3,7 @@
 // contour, checked against the grid, the other cracks and the materials).
 #include "libmpm/mpm/crack_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -10,6 +11,7 @@
 #include "libmpm/core/json_reader.hpp"
 #include "libmpm/crack/crack2d.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
+#include "libmpm/method/describe.hpp"
 
 namespace cleave {
 namespace {
@@ -46,6 +48,53 @@ void check_cracks(const Model<2>& m) {
   }
 }
 
+// An end within a cell of a free edge, with material ahead of it up to that edge, leaves a
+// ligament narrower than a cell: MPM cannot resolve it, and it joins the two faces through the
+// nodes its particles share (NairnMPM's DCB input ends its crack half a cell short of the loaded
+// edge; the arms stayed joined and J read 0-3 J/m^2). Such an end is carried on through the edge
+// (half a cell beyond the material) and becomes a mouth, not a tip, with a warning; an end that
+// the scene names as a tip is left where it is, with a warning.
+void cut_through_near_edges(Model<2>& m) {
+  const double h = m.grid.h;
+  const auto& P = m.particles;
+  std::vector<double> half_size(P.size());  // half the particle's spacing, from its area
+  for (const auto& b : m.bodies)
+    for (std::size_t p = b.first; p < b.first + b.count; ++p) half_size[p] = 0.5 * std::sqrt(P.volume0[p] / b.thickness);
+  for (auto& c : m.cracks) {
+    for (int end = 0; end < 2; ++end) {
+      const crack::TipFrame f = crack::tip_frame(c, end);
+      // The material on the crack line ahead of the end, within two cells: where it stops.
+      double edge = 0.0;
+      bool ahead = false;
+      for (std::size_t p = 0; p < P.size(); ++p) {
+        const Vec<2> d = P.x[p] - f.tip;
+        const double s = d.dot(f.e1);
+        if (s <= 0.0 || s > 2.0 * h || std::abs(d.dot(f.e2)) > half_size[p]) continue;
+        ahead = true;
+        edge = std::max(edge, s + half_size[p]);
+      }
+      if (!ahead || edge > h) continue;
+      const std::string where = "crack '" + c.name + "': its " + (end ? "end" : "start") + " lies " +
+                                format("%.4g m (%.3g cell)", edge, edge / h) + " from a free edge ahead of it, a ligament MPM cannot resolve";
+      const bool named_tip = c.tips != "auto" && c.tip[end];
+      const Vec<2> through = f.tip + (edge + 0.5 * h) * f.e1;
+      const Vec<2> lo = m.grid.origin, hi = m.grid.upper();
+      if (named_tip || !((through.array() > lo.array() + h).all() && (through.array() < hi.array() - h).all())) {
+        m.warnings.push_back(where + (named_tip ? ": it stays a tip as \"tips\" says, and the faces stay joined there"
+                                                : ": the grid has no room to carry it through; enlarge the grid"));
+        continue;
+      }
+      m.warnings.push_back(where + ": carried on through the edge to " + position_text<2>(through) +
+                           ", where it is a mouth, not a tip");
+      if (end == 0) c.points.insert(c.points.begin(), through);
+      else c.points.push_back(through);
+      c.above = c.below = c.points;
+      c.tip[end] = 0;
+      c.update_extent();
+    }
+  }
+}
+
 // "tips": "auto" makes an end point a crack tip when there is material ahead of it (a particle
 // within one cell of the point one cell ahead along the crack): the end of a crack cut in from a
 // free edge is no tip.
@@ -54,6 +103,7 @@ void resolve_tips(Model<2>& m) {
   for (auto& c : m.cracks) {
     if (c.tips != "auto") continue;
     for (int end = 0; end < 2; ++end) {
+      if (!c.tip[end]) continue;  // carried through a free edge (cut_through_near_edges)
       const crack::TipFrame f = crack::tip_frame(c, end);
       const Vec<2> ahead = f.tip + h * f.e1;
       c.tip[end] = false;
@@ -157,6 +207,7 @@ void read_cracks(const json& scene, double length, Model<Dim>& m) {
   } else {
     m.cracks = crack::parse_cracks(scene["cracks"], "cracks", length);
     check_cracks(m);
+    cut_through_near_edges(m);
     resolve_tips(m);
   }
 }
