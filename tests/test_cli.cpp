@@ -246,7 +246,8 @@ TEST_F(Cli, RunTinySceneWritesEveryOutput) {
     EXPECT_TRUE(fs::exists(out / f)) << f;
 
   const std::string csv = read_text(out / "global.csv");
-  const std::string header = "time,step,kinetic_energy,strain_energy,external_work,total_energy,momentum_x,momentum_y";
+  const std::string header = "time_s,step,kinetic_energy_J,strain_energy_J,external_work_J,total_energy_J,"
+                             "momentum_x_kg_m_per_s,momentum_y_kg_m_per_s";  // names with their SI units
   EXPECT_EQ(csv.rfind(header, 0), 0u) << csv.substr(0, 200);
   EXPECT_EQ(csv.substr(0, csv.find('\n')), header) << "a 2D run has exactly these columns";
   EXPECT_GT(std::count(csv.begin(), csv.end(), '\n'), 5);

@@ -318,7 +318,7 @@ TEST(CrackTipOutput, WritesCrackTipsCsvAndTipValuesOnTheCrackFrames) {
   std::ifstream in(out / "crack_tips.csv");
   std::string header, line, last;
   std::getline(in, header);
-  EXPECT_EQ(header, "time,crack,tip,x,y,speed,J1,J2,KI,KII");  // method/tip_table.hpp
+  EXPECT_EQ(header, "time_s,crack,tip,x_m,y_m,speed_m_per_s,J1_J_per_m2,J2_J_per_m2,KI_Pa_sqrt_m,KII_Pa_sqrt_m");  // method/tip_table.hpp
   int rows = 0;
   while (std::getline(in, line)) ++rows, last = line;
   EXPECT_EQ(rows, 5);  // t = 0, 0.5, 1, 1.5, 2 ms: one tip

@@ -30,6 +30,9 @@
 #include <string>
 #include <vector>
 
+#include "libmpm/crack/crack2d.hpp"
+#include "libmpm/crack/tip_parameters.hpp"
+#include "libmpm/io/crack_output.hpp"
 #include "libmpm/io/csv_writer.hpp"
 #include "libmpm/io/point_set.hpp"
 #include "libmpm/io/pvd_writer.hpp"
@@ -40,6 +43,7 @@ using cleave::io::CsvSeries;
 using cleave::io::PointArray;
 using cleave::io::PointSet;
 using cleave::io::PvdIndex;
+using cleave::io::VtuFormat;
 using cleave::io::write_vtu;
 
 namespace {
@@ -86,6 +90,35 @@ PointSet make_cloud(std::size_t n) {
 }
 
 bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
+
+// What a reader gives back for values written in `format`: the doubles, or each rounded to the
+// nearest float (beyond float's range: +-inf).
+std::vector<double> as_written(const std::vector<double>& v, const VtuFormat& format) {
+  if (!format.float32) return v;
+  std::vector<double> r(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i)
+    r[i] = std::fabs(v[i]) > std::numeric_limits<float>::max() ? std::copysign(HUGE_VAL, v[i])
+                                                                : static_cast<double>(static_cast<float>(v[i]));
+  return r;
+}
+
+// The cells a PointSet is written as, (VTK type, point ids) in file order: a vertex per point, or
+// the polylines' segments (a one-point polyline: a vertex).
+std::vector<std::pair<int, std::vector<std::int64_t>>> expected_cells(const PointSet& ps) {
+  std::vector<std::pair<int, std::vector<std::int64_t>>> cells;
+  if (ps.polylines.empty())
+    for (std::size_t i = 0; i < ps.size(); ++i) cells.push_back({VTK_VERTEX, {std::int64_t(i)}});
+  for (const auto& line : ps.polylines) {
+    if (line.size() == 1) cells.push_back({VTK_VERTEX, {line[0]}});
+    for (std::size_t k = 1; k < line.size(); ++k) cells.push_back({VTK_LINE, {line[k - 1], line[k]}});
+  }
+  return cells;
+}
+
+std::string format_name(const VtuFormat& f) {
+  return std::string(f.zlib ? "zlib" : "raw") + (f.float32 ? "_float32" : "_float64");
+}
+const VtuFormat kEveryFormat[] = {{false, false}, {true, false}, {false, true}, {true, true}};
 
 // Compares element-wise by bit pattern and reports the first mismatch.
 void expect_bits(const std::vector<double>& want, const std::vector<double>& got, const std::string& what) {
@@ -153,15 +186,17 @@ TEST(WriteVtu, VtkReadsBackBitExact) {
 
 namespace {
 
-// Writes `ps` to dir/cloud.vtu, reads it with meshio and compares every value bit for bit.
-void expect_meshio_reads_back(const PointSet& ps, const fs::path& dir) {
+// Writes `ps` to dir/cloud.vtu in `format`, reads it with meshio and compares every value bit for
+// bit (float32: with the floats written) and every cell.
+void expect_meshio_reads_back(const PointSet& ps, const fs::path& dir, const VtuFormat& format = {}) {
   const std::string py = CLEAVE_DEBIAN_PYTHON;
   const std::size_t n = ps.size();
   const fs::path f = dir / "cloud.vtu";
-  write_vtu(f, ps);
+  write_vtu(f, ps, format);
 
   // The script dumps raw little-endian doubles (no decimal round trip to doubt) plus a manifest
-  // "name components rows" per array and "cells type count" per cell block.
+  // "name components rows" per array and "cells type count" per cell block, whose point ids go to
+  // cells_K.bin as little-endian int64.
   const fs::path script = dir / "dump.py";
   std::ofstream(script) << R"(import sys, meshio, numpy as np
 m = meshio.read(sys.argv[1])
@@ -174,7 +209,8 @@ with open(out + "/manifest.txt", "w") as man:
     dump("points", m.points)
     for k, v in m.point_data.items():
         dump(k, v)
-    for b in m.cells:
+    for i, b in enumerate(m.cells):
+        np.asarray(b.data, dtype="<i8").tofile(out + "/cells_%d.bin" % i)
         man.write("cells %s %d\n" % (b.type, len(b.data)))
 )";
   const fs::path out = dir / "meshio";
@@ -183,12 +219,16 @@ with open(out + "/manifest.txt", "w") as man:
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
 
   std::map<std::string, std::pair<int, std::size_t>> shape;
+  std::vector<std::pair<int, std::vector<std::int64_t>>> cells;  // as meshio gives them, in order
   std::ifstream man(out / "manifest.txt");
-  std::string name, cell_type;
-  std::size_t cells = 0;
   for (std::string tag; man >> tag;) {
     if (tag == "cells") {
-      man >> cell_type >> cells;
+      std::string type;
+      std::size_t count;
+      man >> type >> count;
+      const int vtk_type = type == "vertex" ? VTK_VERTEX : type == "line" ? VTK_LINE : -1;
+      ASSERT_NE(vtk_type, -1) << "meshio cell type " << type;
+      cells.push_back({vtk_type, std::vector<std::int64_t>(count)});
     } else {
       int comps;
       std::size_t rows;
@@ -196,16 +236,26 @@ with open(out + "/manifest.txt", "w") as man:
       shape[tag] = {comps, rows};
     }
   }
-  EXPECT_EQ(cell_type, "vertex");
-  EXPECT_EQ(cells, n);
+  // Each block's ids, flattened; then one (type, ids) per cell.
+  std::vector<std::pair<int, std::vector<std::int64_t>>> got;
+  for (std::size_t b = 0; b < cells.size(); ++b) {
+    const std::string bytes = slurp(out / ("cells_" + std::to_string(b) + ".bin"));
+    std::vector<std::int64_t> ids(bytes.size() / sizeof(std::int64_t));
+    std::memcpy(ids.data(), bytes.data(), ids.size() * sizeof(std::int64_t));
+    const std::size_t count = cells[b].second.size(), per = count ? ids.size() / count : 0;
+    ASSERT_EQ(per * count, ids.size());
+    for (std::size_t c = 0; c < count; ++c)
+      got.push_back({cells[b].first, std::vector<std::int64_t>(ids.begin() + c * per, ids.begin() + (c + 1) * per)});
+  }
+  EXPECT_EQ(got, expected_cells(ps)) << "meshio cells";
   ASSERT_EQ(shape.count("points"), 1u);
   EXPECT_EQ(shape["points"], (std::pair<int, std::size_t>{3, n}));
-  expect_bits(ps.points, read_f64(out / "points.bin"), "meshio points");
+  expect_bits(as_written(ps.points, format), read_f64(out / "points.bin"), "meshio points");
   ASSERT_EQ(shape.size(), 1 + ps.arrays.size());
   for (const auto& a : ps.arrays) {
     ASSERT_EQ(shape.count(a.name), 1u) << a.name;
     EXPECT_EQ(shape[a.name], (std::pair<int, std::size_t>{a.components, n})) << a.name;
-    expect_bits(a.values, read_f64(out / (a.name + ".bin")), "meshio " + a.name);
+    expect_bits(as_written(a.values, format), read_f64(out / (a.name + ".bin")), "meshio " + a.name);
   }
 }
 
@@ -257,27 +307,135 @@ TEST(WriteVtu, MeshioReadsBackEveryArrayLayoutBitExact) {
     }
 }
 
-TEST(WriteVtu, PolylinesReadBack) {
-  const fs::path f = test_dir() / "cracks.vtu";
-  PointSet ps;
-  for (int i = 0; i < 9; ++i) ps.points.insert(ps.points.end(), {0.5 * i, 0.25 * i * i, 0.0});
-  ps.arrays.push_back({"opening", 1, {0, 1, 2, 3, 4, 5, 6, 7, 8}});
-  ps.polylines = {{0, 1, 2, 3}, {4, 5}, {8, 7, 6}};
-  write_vtu(f, ps);
+namespace {
 
+// VTK's reader gives back every value of `ps` (float32: the floats written), with the written
+// type, and exactly the cells of expected_cells.
+void expect_vtk_reads_back(const fs::path& f, const PointSet& ps, const VtuFormat& format) {
   auto ug = read_vtk(f);
   ASSERT_TRUE(ug);
-  ASSERT_EQ(ug->GetNumberOfPoints(), 9);
-  ASSERT_EQ(ug->GetNumberOfCells(), 3);
-  expect_bits(ps.points, to_vector(ug->GetPoints()->GetData()), "points");
-  for (vtkIdType c = 0; c < 3; ++c) {
-    EXPECT_EQ(ug->GetCellType(c), VTK_POLY_LINE);
+  const int type = format.float32 ? VTK_FLOAT : VTK_DOUBLE;
+  ASSERT_EQ(ug->GetNumberOfPoints(), static_cast<vtkIdType>(ps.size()));
+  if (ps.size()) {
+    EXPECT_EQ(ug->GetPoints()->GetData()->GetDataType(), type);
+    expect_bits(as_written(ps.points, format), to_vector(ug->GetPoints()->GetData()), "vtk points");
+  }
+  ASSERT_EQ(ug->GetPointData()->GetNumberOfArrays(), static_cast<int>(ps.arrays.size()));
+  for (const auto& a : ps.arrays) {
+    vtkDataArray* got = ug->GetPointData()->GetArray(a.name.c_str());
+    ASSERT_NE(got, nullptr) << a.name;
+    EXPECT_EQ(got->GetDataType(), type) << a.name;
+    EXPECT_EQ(got->GetNumberOfComponents(), a.components) << a.name;
+    expect_bits(as_written(a.values, format), to_vector(got), "vtk " + a.name);
+  }
+  std::vector<std::pair<int, std::vector<std::int64_t>>> cells;
+  for (vtkIdType c = 0; c < ug->GetNumberOfCells(); ++c) {
     vtkNew<vtkIdList> ids;
     ug->GetCellPoints(c, ids);
-    const auto& want = ps.polylines[static_cast<std::size_t>(c)];
-    ASSERT_EQ(ids->GetNumberOfIds(), static_cast<vtkIdType>(want.size()));
-    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) EXPECT_EQ(ids->GetId(k), want[static_cast<std::size_t>(k)]);
+    auto& cell = cells.emplace_back(ug->GetCellType(c), std::vector<std::int64_t>{});
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) cell.second.push_back(ids->GetId(k));
   }
+  EXPECT_EQ(cells, expected_cells(ps)) << "vtk cells";
+}
+
+// Two cracks as the run writes them (io/crack_output.hpp), with tip values on their tips.
+PointSet crack_file_contents() {
+  std::vector<cleave::crack::Crack2D> cracks(2);
+  for (int c = 0; c < 2; ++c) {
+    auto& k = cracks[c];
+    k.id = c;
+    for (int i = 0; i < 5 + 3 * c; ++i) {
+      const cleave::Vec<2> x(1e-3 * i, 2e-3 * c + 1e-4 * i * i);
+      k.points.push_back(x);
+      k.above.push_back(x + cleave::Vec<2>(1e-6 * i, 3e-6 * (4 - i)));
+      k.below.push_back(x - cleave::Vec<2>(0, 2e-6 * (4 - i)));
+    }
+  }
+  std::vector<cleave::crack::TipRecord> tips(2);
+  tips[0].crack = 0, tips[0].end = 1, tips[0].J1 = 12.5, tips[0].KI = 1.5e6, tips[0].KII = -2e4;
+  tips[1].crack = 1, tips[1].end = 0, tips[1].J1 = 0.25, tips[1].J2 = -0.125, tips[1].KI = 3e5;
+  return cleave::io::crack_point_set(cracks, tips);
+}
+
+}  // namespace
+
+// Crack paths are written as VTK_LINE segments in path order (meshio has no VTK_POLY_LINE); a
+// one-point path is a vertex, so every point belongs to a cell.
+TEST(WriteVtu, CrackPathsAreLineSegmentsThatVtkReadsBackInPathOrder) {
+  const fs::path f = test_dir() / "cracks.vtu";
+  PointSet ps;
+  for (int i = 0; i < 10; ++i) ps.points.insert(ps.points.end(), {0.5 * i, 0.25 * i * i, 0.0});
+  ps.arrays.push_back({"opening", 1, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}});
+  ps.polylines = {{0, 1, 2, 3}, {4, 5}, {8, 7, 6}, {9}};
+  write_vtu(f, ps);
+  EXPECT_EQ(expected_cells(ps).size(), 3u + 1u + 2u + 1u);
+  expect_vtk_reads_back(f, ps, {});
+}
+
+// The crack files of a run: meshio gives back every segment of every crack and every point array
+// (above, below, cod, cod_normal, cod_tangential, crack, J1, J2, KI, KII), in every encoding.
+TEST(WriteVtu, MeshioReadsEverySegmentAndPointArrayOfACrackFile) {
+  const std::string py = CLEAVE_DEBIAN_PYTHON;
+  if (std::system((py + " -c 'import meshio, numpy' >/dev/null 2>&1").c_str()) != 0)
+    FAIL() << py << " cannot import meshio and numpy: install python3-meshio (the README's test command does)";
+  const PointSet ps = crack_file_contents();
+  ASSERT_EQ(ps.arrays.size(), 10u);
+  ASSERT_EQ(ps.polylines.size(), 2u);
+  const fs::path dir = test_dir();
+  for (const VtuFormat& format : kEveryFormat) {
+    SCOPED_TRACE(format_name(format));
+    const fs::path d = dir / format_name(format);
+    fs::create_directories(d);
+    expect_meshio_reads_back(ps, d, format);
+    expect_vtk_reads_back(d / "cloud.vtu", ps, format);
+  }
+}
+
+// output.compression = zlib and output.precision = float32, alone and together: VTK's reader and
+// meshio give back every value (float32: rounded to the nearest float) and every cell, for sizes
+// that end the compressed arrays in a partial block, a full block, or many blocks (and no points:
+// empty arrays, zero blocks).
+TEST(WriteVtu, EveryCompressionAndPrecisionReadsBackInVtkAndMeshio) {
+  const std::string py = CLEAVE_DEBIAN_PYTHON;
+  if (std::system((py + " -c 'import meshio, numpy' >/dev/null 2>&1").c_str()) != 0)
+    FAIL() << py << " cannot import meshio and numpy: install python3-meshio (the README's test command does)";
+  const fs::path dir = test_dir();
+  // 4096 points: a scalar's 32 KiB of doubles fill exactly one zlib block (VTK's partial-size 0).
+  for (std::size_t n : {0, 1, 3, 213, 4096, 20000})
+    for (const VtuFormat& format : kEveryFormat) {
+      SCOPED_TRACE(format_name(format) + ", " + std::to_string(n) + " points");
+      const fs::path d = dir / (format_name(format) + "_" + std::to_string(n));
+      fs::create_directories(d);
+      const PointSet ps = make_cloud(n);
+      if (n > 0) expect_meshio_reads_back(ps, d, format);  // meshio 5.0 reads no file without cells
+      else write_vtu(d / "cloud.vtu", ps, format);
+      expect_vtk_reads_back(d / "cloud.vtu", ps, format);
+      const std::string text = slurp(d / "cloud.vtu");
+      EXPECT_EQ(text.find("compressor=\"vtkZLibDataCompressor\"") != std::string::npos, format.zlib);
+      EXPECT_EQ(text.find("type=\"Float32\"") != std::string::npos, format.float32);
+      EXPECT_EQ(text.find("type=\"Float64\"") != std::string::npos, !format.float32);
+    }
+}
+
+// Compression shrinks what compresses (2D frames: z = 0, stress components 0) and float32 halves
+// the values; neither changes what a reader gets beyond the rounding above.
+TEST(WriteVtu, ZlibAndFloat32MakeSmallerFiles) {
+  const fs::path dir = test_dir();
+  PointSet ps;
+  const std::size_t n = 10000;
+  for (std::size_t i = 0; i < n; ++i) ps.points.insert(ps.points.end(), {1e-3 * double(i % 100), 1e-3 * double(i / 100), 0.0});
+  PointArray stress{"stress", 6, std::vector<double>(6 * n, 0.0)};
+  for (std::size_t i = 0; i < n; ++i) stress.values[6 * i] = std::sin(0.01 * double(i)) * 1e6;
+  ps.arrays.push_back(stress);
+  std::map<std::string, std::uintmax_t> size;
+  for (const VtuFormat& format : kEveryFormat) {
+    const fs::path f = dir / (format_name(format) + ".vtu");
+    write_vtu(f, ps, format);
+    size[format_name(format)] = fs::file_size(f);
+  }
+  EXPECT_LT(size["zlib_float64"], size["raw_float64"] / 2);
+  EXPECT_LT(size["raw_float32"], size["raw_float64"] * 6 / 10);
+  EXPECT_LT(size["zlib_float32"], size["raw_float32"] / 2);
 }
 
 TEST(WriteVtu, EmptyOverwriteAndErrors) {
@@ -413,4 +571,15 @@ TEST(CsvSeries, HeaderRowsAppendAndTruncate) {
   EXPECT_THROW(CsvSeries(csv, {"time", "a,b"}, false), std::invalid_argument);
   CsvSeries::truncate_after(csv.parent_path() / "missing.csv", 1.0);
   EXPECT_FALSE(fs::exists(csv.parent_path() / "missing.csv"));
+}
+
+// A value that is zero is printed as 0, never -0 (a sum of cancelling terms, a momentum of -1 x 0).
+TEST(CsvSeries, NegativeZeroIsWrittenAsZero) {
+  const fs::path csv = test_dir() / "zero.csv";
+  {
+    CsvSeries s(csv, {"time_s", "momentum_x_kg_m_per_s", "x_m"}, false);
+    s.row({0.0, -0.0, -1.0 * 0.0});
+    s.row({1e-6, -0.0, -4.9406564584124654e-324});
+  }
+  EXPECT_EQ(slurp(csv), "time_s,momentum_x_kg_m_per_s,x_m\n0,0,0\n9.9999999999999995e-07,0,-4.9406564584124654e-324\n");
 }

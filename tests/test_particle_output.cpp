@@ -2,7 +2,9 @@
 // same values, and the last frame's arrays equal the model's state bit for bit (issue: outputs;
 // issue 14: meshio 5.0.0 misread some frames of raw appended data).
 #include <gtest/gtest.h>
+#include <vtkCellType.h>
 #include <vtkDataArray.h>
+#include <vtkIdList.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -17,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "libmpm/core/error.hpp"
 #include "libmpm/io/particle_fields.hpp"
 #include "libmpm/method/run_scene.hpp"
 #include "libmpm/mpm/particle_output.hpp"
@@ -28,7 +31,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// "points" and every point-data array of one frame, flattened.
+// "points", every point-data array and the cells' point ids by cell type ("cells:vertex",
+// "cells:line") of one frame, flattened.
 using Arrays = std::map<std::string, std::vector<double>>;
 
 Arrays read_with_vtk(const fs::path& vtu) {
@@ -50,6 +54,13 @@ Arrays read_with_vtk(const fs::path& vtu) {
     for (vtkIdType i = 0; i < arr->GetNumberOfTuples(); ++i)
       for (int c = 0; c < arr->GetNumberOfComponents(); ++c) v.push_back(arr->GetComponent(i, c));
   }
+  for (vtkIdType c = 0; c < ug->GetNumberOfCells(); ++c) {
+    const int type = ug->GetCellType(c);
+    auto& v = got[type == VTK_VERTEX ? "cells:vertex" : type == VTK_LINE ? "cells:line" : "cells:" + std::to_string(type)];
+    vtkNew<vtkIdList> ids;
+    ug->GetCellPoints(c, ids);
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) v.push_back(double(ids->GetId(k)));
+  }
   return got;
 }
 
@@ -67,7 +78,10 @@ std::vector<Arrays> read_with_meshio(const std::vector<fs::path>& files, const f
                            "        for k in sorted(m.point_data):\n"
                            "            a = m.point_data[k].ravel()\n"
                            "            f.write('%s %d\\n' % (k, a.size))\n"
-                           "            f.write(' '.join('%.17g' % v for v in a) + '\\n')\n";
+                           "            f.write(' '.join('%.17g' % v for v in a) + '\\n')\n"
+                           "        for b in m.cells:\n"
+                           "            f.write('cells:%s %d\\n' % (b.type, b.data.size))\n"
+                           "            f.write(' '.join('%d' % v for v in b.data.ravel()) + '\\n')\n";
   std::string cmd = "/usr/bin/python3 " + script.string() + " " + work.string();
   for (const auto& f : files) {
     cmd += ' ';
@@ -138,7 +152,7 @@ void check_run_output(const nlohmann::json& scene, const std::string& tag) {
   Arrays& last = vtk.back();
   ASSERT_EQ(last["points"].size(), 3 * m.particles.size());
   EXPECT_EQ(last["points"], expect.points);
-  EXPECT_EQ(last.size(), 1 + expect.arrays.size());
+  EXPECT_EQ(last.size(), 2 + expect.arrays.size());  // points, the arrays, cells:vertex
   for (const auto& a : expect.arrays) EXPECT_EQ(last[a.name], a.values) << a.name;
 }
 
@@ -181,10 +195,12 @@ TEST(ParticleOutput, EveryFrameWithAFewFieldsReadsBackInMeshio) {
   const RunSummary sum = run_scene(s, {}, opt);
   ASSERT_GE(sum.frames, 5);
   const std::vector<Arrays> vtk = check_every_frame(out, "particles", sum.frames);
-  EXPECT_EQ(vtk.back().size(), 3u);  // points, displacement, stress
+  EXPECT_EQ(vtk.back().size(), 4u);  // points, displacement, stress, cells:vertex
 }
 
-// A cracked run's crack frames (polylines with the opening arrays): every one reads back in meshio.
+// A cracked run's crack frames (crack paths as line segments with the opening arrays): meshio reads
+// every segment and every point array of every one (it dropped the VTK_POLY_LINE cells written
+// before issue 15).
 TEST(ParticleOutput, EveryCrackFrameOfARunReadsBackInMeshio) {
   const fs::path out = fs::path(CLEAVE_BINARY_DIR) / "test_particle_output" / "dcb";
   fs::remove_all(out);
@@ -198,6 +214,73 @@ TEST(ParticleOutput, EveryCrackFrameOfARunReadsBackInMeshio) {
   check_every_frame(out, "particles", sum.frames);
   const std::vector<Arrays> vtk = check_every_frame(out, "cracks", sum.frames);
   EXPECT_TRUE(vtk.back().count("cod")) << "a crack frame with its openings";
+  for (const Arrays& frame : vtk) {  // one crack: a segment between each two consecutive points
+    const std::size_t points = frame.at("points").size() / 3;
+    ASSERT_GE(points, 2u);
+    std::vector<double> segments;
+    for (std::size_t i = 1; i < points; ++i) segments.insert(segments.end(), {double(i - 1), double(i)});
+    ASSERT_TRUE(frame.count("cells:line"));
+    EXPECT_EQ(frame.at("cells:line"), segments);
+    EXPECT_EQ(frame.size(), 8u);  // points, above, below, cod, cod_normal, cod_tangential, crack, cells:line
+  }
+}
+
+// output.compression = zlib with output.precision = float32: every frame of a cracked run reads
+// back in meshio as in VTK, and the last particle frame is the model's final state rounded to float.
+TEST(ParticleOutput, ZlibFloat32FramesOfARunReadBackInMeshioAndVtkToFloatRounding) {
+  const fs::path out = fs::path(CLEAVE_BINARY_DIR) / "test_particle_output" / "dcb_zlib_float32";
+  fs::remove_all(out);
+  nlohmann::json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");
+  s["time"]["end"] = 0.01;
+  s["output"]["interval"] = 0.002;
+  s["output"]["compression"] = "zlib";
+  s["output"]["precision"] = "float32";
+  Model<2> m = build_model<2>(s);
+  EXPECT_TRUE(m.output.zlib);
+  EXPECT_TRUE(m.output.float32);
+  RunOptions opt;
+  opt.out = out;
+  const RunSummary sum = run_model<2>(m, opt);
+  ASSERT_GE(sum.frames, 5);
+  check_every_frame(out, "cracks", sum.frames);
+  Arrays last = check_every_frame(out, "particles", sum.frames).back();
+  auto rounded = [](std::vector<double> v) {
+    for (double& x : v) x = double(float(x));
+    return v;
+  };
+  const io::PointSet expect = particle_point_set<2>(m, m.output.fields);
+  EXPECT_EQ(last["points"], rounded(expect.points));
+  for (const auto& a : expect.arrays) EXPECT_EQ(last[a.name], rounded(a.values)) << a.name;
+  std::ifstream vtu(out / "particles_000000.vtu");
+  std::string header;
+  std::getline(vtu, header), std::getline(vtu, header);
+  EXPECT_NE(header.find("compressor=\"vtkZLibDataCompressor\""), std::string::npos) << header;
+}
+
+// The defaults keep today's files (raw Float64); other values are refused, naming the key.
+TEST(ParticleOutput, CompressionAndPrecisionDefaultToRawFloat64AndRefuseOtherValues) {
+  nlohmann::json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");
+  const Model<2> plain = build_model<2>(s);
+  EXPECT_FALSE(plain.output.zlib);
+  EXPECT_FALSE(plain.output.float32);
+  auto error_of = [](const nlohmann::json& scene) {
+    try {
+      build_model<2>(scene);
+    } catch (const SceneError& e) {
+      return e.key_path() + ": " + e.what();
+    }
+    return std::string("no error");
+  };
+  s["output"]["compression"] = "lz4";
+  EXPECT_NE(error_of(s).find("output.compression"), std::string::npos) << error_of(s);
+  EXPECT_NE(error_of(s).find("valid: none, zlib"), std::string::npos) << error_of(s);
+  s["output"]["compression"] = "none";
+  s["output"]["precision"] = 32;
+  EXPECT_NE(error_of(s).find("output.precision"), std::string::npos) << error_of(s);
+  s["output"]["precision"] = "half";
+  EXPECT_NE(error_of(s).find("valid: float64, float32"), std::string::npos) << error_of(s);
+  s["output"]["precision"] = "float64";
+  EXPECT_EQ(error_of(s), "no error");
 }
 
 }  // namespace

@@ -191,7 +191,7 @@ TEST(PdValidation, BranchingPlateCoarse) {
   std::ifstream tips(out / "crack_tips.csv");
   std::string line;
   std::getline(tips, line);
-  EXPECT_EQ(line, "time,crack,tip,x,y,speed");
+  EXPECT_EQ(line, "time_s,crack,tip,x_m,y_m,speed_m_per_s");
   double vmax = 0, xmax = 0;
   int rows = 0;
   while (std::getline(tips, line)) {
@@ -351,7 +351,7 @@ TEST(PdSolver, ThreeDimensionalCrackedBlockRuns) {
   std::ifstream tips(out / "crack_tips.csv");
   std::string header, row;
   std::getline(tips, header);
-  EXPECT_EQ(header, "time,crack,tip,x,y,z,speed");
+  EXPECT_EQ(header, "time_s,crack,tip,x_m,y_m,z_m,speed_m_per_s");
   EXPECT_TRUE(static_cast<bool>(std::getline(tips, row))) << "no damaged point was ever tracked";
   EXPECT_TRUE(fs::exists(out / "particles.pvd"));
   std::size_t broken = 0;

@@ -70,6 +70,31 @@ TEST(Registries, UnknownMethodListsTheRegisteredOnes) {
   EXPECT_EQ(cleave::MethodRegistry<2>::instance().names(), (std::vector<std::string>{"mpm", "peridynamics"}));
 }
 
+// A second style under a taken name would replace the first silently (which one won depended on
+// the link order): it is refused at registration, naming the table and the name.
+TEST(Registries, ADuplicateRegistrationIsAnErrorNamingTheTableAndTheName) {
+  struct Tag {};
+  cleave::NameTable<int, Tag> table;
+  EXPECT_TRUE(table.add("one", 1));
+  try {
+    table.add("one", 2);
+    ADD_FAILURE() << "no error";
+  } catch (const std::logic_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'one'"), std::string::npos) << what;
+    EXPECT_NE(what.find("duplicate registration"), std::string::npos) << what;
+    EXPECT_NE(what.find("Tag"), std::string::npos) << what;
+  }
+  EXPECT_EQ(table.at("one"), 1);  // the first stays
+  auto& methods = cleave::MethodRegistry<2>::instance();
+  try {
+    methods.add("mpm", [](const json&) { return std::unique_ptr<cleave::Method<2>>(); });
+    ADD_FAILURE() << "no error";
+  } catch (const std::logic_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cleave::Method<2>"), std::string::npos) << e.what();
+  }
+}
+
 // --- materials ----------------------------------------------------------------------------------
 
 TEST(Registries, UnknownMaterialListsTheRegisteredOnes) {

@@ -1,5 +1,6 @@
 // Doubts that are not errors reach the user as warnings: a strong particle-mass contrast between
-// bodies with linear shape functions (the beam impact is unstable at CFL 0.5 that way).
+// bodies with linear shape functions (the beam impact is unstable at CFL 0.5 that way), and bodies
+// that overlap.
 #include <gtest/gtest.h>
 
 #include "libmpm/mpm/mpm_scene.hpp"
@@ -16,6 +17,27 @@ TEST(SceneWarnings, MassContrastWithLinearShapeFunctions) {
   EXPECT_NE(lin.warnings[0].find("240x"), std::string::npos) << lin.warnings[0];
   s["mpm"]["shape_function"] = "ugimp";
   EXPECT_TRUE(build_model<2>(s).warnings.empty());
+}
+
+// Two bodies that overlap both fill the shared region, and their particles share grid nodes, so
+// they stick together: a warning names both. Disks that only touch (five_disks.json) get none.
+TEST(SceneWarnings, TwoBodiesThatOverlapAreNamedInAWarning) {
+  nlohmann::json s = nlohmann::json::parse(R"({
+    "analysis": {"type": "plane_strain"}, "resolution": 0.01,
+    "materials": [{"name": "steel", "type": "linear_elastic", "E": 2e11, "nu": 0.3, "density": 7800}],
+    "bodies": [{"name": "left", "material": "steel", "shape": {"type": "rectangle", "min": [0, 0], "max": [0.1, 0.05]}},
+               {"name": "right", "material": "steel", "shape": {"type": "disk", "center": [0.1, 0.025], "radius": 0.02}}],
+    "time": {"end": 1e-5}
+  })");
+  const Model<2> m = build_model<2>(s);
+  ASSERT_EQ(m.warnings.size(), 1u);
+  const std::string& w = m.warnings[0];
+  for (const char* word : {"'left' (bodies[0])", "'right' (bodies[1])", "overlap", "stick together"})
+    EXPECT_NE(w.find(word), std::string::npos) << word << " missing in: " << w;
+  // Side by side, sharing the face x = 0.1: no warning.
+  s["bodies"][1]["shape"] = {{"type", "rectangle"}, {"min", {0.1, 0}}, {"max", {0.2, 0.05}}};
+  EXPECT_TRUE(build_model<2>(s).warnings.empty());
+  EXPECT_TRUE(build_model<2>(load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/five_disks.json")).warnings.empty());
 }
 
 }  // namespace

@@ -10,11 +10,13 @@
 
 using namespace cleave;
 
+// Column names end in their SI unit (docs/scenes.md, "Output files"); indices have none.
 TEST(TipTable, LeadingColumnsAreTheSameForEveryMethodThenTheMethodsQuantities) {
-  const TipTable<2> mpm(1, 2, {"J1", "J2", "KI", "KII"});
+  const TipTable<2> mpm(1, 2, {"J1_J_per_m2", "J2_J_per_m2", "KI_Pa_sqrt_m", "KII_Pa_sqrt_m"});
   const TipTable<3> pd3(1, 1, {});
-  EXPECT_EQ(mpm.columns(), (std::vector<std::string>{"time", "crack", "tip", "x", "y", "speed", "J1", "J2", "KI", "KII"}));
-  EXPECT_EQ(pd3.columns(), (std::vector<std::string>{"time", "crack", "tip", "x", "y", "z", "speed"}));
+  EXPECT_EQ(mpm.columns(), (std::vector<std::string>{"time_s", "crack", "tip", "x_m", "y_m", "speed_m_per_s",
+                                                     "J1_J_per_m2", "J2_J_per_m2", "KI_Pa_sqrt_m", "KII_Pa_sqrt_m"}));
+  EXPECT_EQ(pd3.columns(), (std::vector<std::string>{"time_s", "crack", "tip", "x_m", "y_m", "z_m", "speed_m_per_s"}));
 }
 
 TEST(TipTable, SpeedIsTheDistanceFromTheSameTipsPreviousRowOverTheTimeBetween) {

@@ -62,7 +62,7 @@ fs::path RenderCli::dir_;
 TEST_F(RenderCli, FringeFramesAndMovie) {
   const fs::path images = dir_ / "fringes";
   const auto r = run("render " + (dir_ / "disk").string() + " --fringes dark --fringe-constant 7 --thickness 5 --size 320x240 " +
-                         "--images " + images.string() + " --movie movie.mp4 --fps 5 --title Disk",
+                         "--keep-size --images " + images.string() + " --movie movie.mp4 --fps 5 --title Disk",
                      dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   int pngs = 0;
@@ -79,10 +79,10 @@ TEST_F(RenderCli, FieldWhiteLightAndPlots) {
   const fs::path d = dir_ / "disk";
   auto r = run("render " + d.string() + " --frames last --field syy --colormap cividis --range -20,5 --size 300x300", dir_);
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_TRUE(fs::exists(d / "render" / "syy_000000.png"));
+  EXPECT_TRUE(fs::exists(d / "render" / "syy_000006.png"));  // frames are named by their index: 7 frames
   r = run("render " + d.string() + " --frames last --white-light --fringes dark --fringe-constant 7 --thickness 5 --size 300x300", dir_);
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_TRUE(fs::exists(d / "render" / "fringes_white_000000.png"));
+  EXPECT_TRUE(fs::exists(d / "render" / "fringes_white_000006.png"));
   r = run("plot " + d.string() + " --size 400x300", dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(d / "render" / "energy.png"));
@@ -156,8 +156,8 @@ TEST_F(RenderCli, CrackPlotsAndOverlay) {
   fs::remove_all(d);
   fs::copy(dir_ / "disk", d, fs::copy_options::recursive);
   std::ofstream tips(d / "crack_tips.csv");
-  tips << "time,crack,tip,x,y,J1,J2,KI,KII\n";
-  for (int k = 0; k <= 10; ++k) tips << k * 3e-5 << ",0,0,0.005,0," << 10 * k << ",0," << 1e5 * k << "," << 2e4 * k << "\n";
+  tips << "time_s,crack,tip,x_m,y_m,speed_m_per_s,J1_J_per_m2,J2_J_per_m2,KI_Pa_sqrt_m,KII_Pa_sqrt_m\n";
+  for (int k = 0; k <= 10; ++k) tips << k * 3e-5 << ",0,0,0.005,0,0," << 10 * k << ",0," << 1e5 * k << "," << 2e4 * k << "\n";
   tips.close();
   io::PointSet crack;
   crack.points = {-0.01, 0.0, 0, 0.0, 0.0, 0, 0.01, 0.0, 0};
@@ -183,6 +183,68 @@ TEST_F(RenderCli, CrackPlotsAndOverlay) {
   EXPECT_GT(red, 50u) << "the crack polyline is drawn over the gray field";
 }
 
+// The plots find CSV columns by their names with units (time_s, J1_J_per_m2, KI_Pa_sqrt_m), and by
+// the bare names of runs written before the columns carried units; a file with neither gives no plot
+// (and `cleave plot` says there is nothing to plot).
+TEST_F(RenderCli, PlotsFindCsvColumnsByTheirNamesWithUnitsOrTheOlderBareNames) {
+  const fs::path d = dir_ / "csv_names";
+  auto plot_with = [&](const std::string& header, bool speed, int code = 0) {
+    fs::remove_all(d);
+    fs::create_directories(d);
+    std::ofstream tips(d / "crack_tips.csv");
+    tips << header << "\n";
+    for (int k = 0; k <= 10; ++k)
+      tips << k * 3e-5 << ",0,1,0.005,0," << (speed ? "0," : "") << 10 * k << ",0," << 1e5 * k << "," << 2e4 * k << "\n";
+    tips.close();
+    const auto r = run("plot " + d.string() + " --size 400x300", dir_);
+    EXPECT_EQ(r.code, code) << r.err;
+    std::ifstream png(d / "render" / "K.png", std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(png)), std::istreambuf_iterator<char>());
+  };
+  const std::string with_units =
+      plot_with("time_s,crack,tip,x_m,y_m,speed_m_per_s,J1_J_per_m2,J2_J_per_m2,KI_Pa_sqrt_m,KII_Pa_sqrt_m", true);
+  ASSERT_FALSE(with_units.empty()) << "no K.png from columns with units";
+  EXPECT_TRUE(fs::exists(d / "render" / "J.png"));
+  EXPECT_EQ(plot_with("time,crack,tip,x,y,J1,J2,KI,KII", false), with_units) << "the older names plot the same";
+  plot_with("time_s,crack,tip,x_m,y_m,speed_m_per_s,A,B,C,D", true, 1);
+  EXPECT_FALSE(fs::exists(d / "render" / "K.png"));
+  EXPECT_FALSE(fs::exists(d / "render" / "J.png"));
+}
+
+// Frames written with output.compression = zlib and output.precision = float32 render as the
+// default raw Float64 frames do (VTK's reader decodes them; float32 moves a pixel at most rarely).
+TEST_F(RenderCli, RendersZlibFloat32FramesLikeRawFloat64Frames) {
+  const fs::path d = dir_ / "disk_zlib_f32";
+  fs::remove_all(d);
+  auto r = run(std::string("run ") + CLEAVE_SOURCE_DIR "/data/scenes/brazilian_disk.json --quiet --threads 1 " +
+                   "--set resolution=1 --set time.end=0.3 --set output.compression=zlib " +
+                   "--set output.precision=float32 --out " + d.string(),
+               dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string last = io::PvdIndex::load(d / "particles.pvd").entries().back().second;
+  EXPECT_EQ(last, io::PvdIndex::load(dir_ / "disk" / "particles.pvd").entries().back().second);
+  EXPECT_LT(fs::file_size(d / last), fs::file_size(dir_ / "disk" / last) / 2);
+  const std::string opts = " --frames last --field von_mises --size 320x240";
+  r = run("render " + d.string() + opts, dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const fs::path ref = dir_ / "disk_raw_f64";
+  fs::remove_all(ref);
+  fs::copy(dir_ / "disk", ref, fs::copy_options::recursive);
+  fs::remove_all(ref / "render");  // images of other tests in this process
+  r = run("render " + ref.string() + opts, dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto the_png = [](const fs::path& images) {  // the one image rendered, whatever its frame number
+    for (const auto& e : fs::directory_iterator(images))
+      if (e.path().extension() == ".png") return e.path();
+    return fs::path();
+  };
+  const Image a = read_image(the_png(d / "render")), b = read_image(the_png(ref / "render"));
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) differ += std::abs(int(a.rgb[i]) - int(b.rgb[i])) > 2;
+  EXPECT_LT(differ, a.rgb.size() / 1000) << "values differing by more than 2 levels";
+}
+
 TEST(RenderCli3D, CubesAndCutPlane) {
   const fs::path dir = fs::path(CLEAVE_BINARY_DIR) / "test_viz_cli_3d";
   fs::remove_all(dir);
@@ -197,17 +259,17 @@ TEST(RenderCli3D, CubesAndCutPlane) {
   ASSERT_EQ(r.code, 0) << r.err;
   r = run("render " + (dir / "out").string() + " --frames last --field von_mises --size 320x240", dir);
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_TRUE(fs::exists(dir / "out" / "render" / "von_mises_000000.png"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "render" / "von_mises_000002.png"));  // the last of 3 frames
   r = run("render " + (dir / "out").string() + " --frames last --field '|v|' --view 100,80,120,20,10,10,0,1,0 --length-unit mm " +
               "--images " + (dir / "view").string() + " --size 320x240",
           dir);
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_TRUE(fs::exists(dir / "view" / "_v__000000.png"));
+  EXPECT_TRUE(fs::exists(dir / "view" / "_v__000002.png"));
   r = run("render " + (dir / "out").string() + " --frames last --field sxx --cut-plane 20,10,10,0,0,1 --length-unit mm " +
               "--images " + (dir / "cut").string() + " --size 320x240",
           dir);
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_TRUE(fs::exists(dir / "cut" / "sxx_000000.png"));
+  EXPECT_TRUE(fs::exists(dir / "cut" / "sxx_000002.png"));
   // A crack surface (two triangles across the bar at x = 20 mm) is drawn over the cubes.
   {
     vtkNew<vtkPoints> pts;
@@ -230,7 +292,7 @@ TEST(RenderCli3D, CubesAndCutPlane) {
               (dir / "cracked").string(),
           dir);
   ASSERT_EQ(r.code, 0) << r.err;
-  const Image img = read_image(dir / "cracked" / "von_mises_000000.png");
+  const Image img = read_image(dir / "cracked" / "von_mises_000002.png");
   std::size_t red = 0;
   for (std::size_t i = 0; i < img.rgb.size(); i += 3) red += img.rgb[i] > 180 && img.rgb[i + 1] < 80 && img.rgb[i + 2] < 80;
   EXPECT_GT(red, 100u) << "the 3D crack surface is drawn";

@@ -11,6 +11,7 @@
 #include "apps/cleave/progress.hpp"
 #include "apps/cleave/render_cli.hpp"
 #include "libmpm/core/error.hpp"
+#include "libmpm/core/resources.hpp"
 #include "libmpm/method/run_scene.hpp"
 #include "libmpm/scene/scene.hpp"
 
@@ -24,7 +25,7 @@ constexpr int kOk = 0, kFailure = 1, kBadInput = 2, kAborted = 3;
 const char* kHelp = R"(cleave - dynamic fracture with particle methods
 
 Usage:
-  cleave run SCENE [--out DIR] [--threads N] [--resume] [--quiet] [--set KEY=VALUE ...]
+  cleave run SCENE [--out DIR] [--threads N] [--resume] [--quiet] [--force] [--set KEY=VALUE ...]
   cleave check SCENE [--set KEY=VALUE ...]
   cleave render OUT [options]       images and movies (stress colours, photoelastic fringes)
   cleave compare OUT --photo IMG --frame SPEC --map X0,Y0,SCALE[,ANGLE] [--points FILE]
@@ -39,8 +40,10 @@ Commands:
             global.csv                             energies, external work, momentum
             crack_tips.csv                         J1, J2, KI, KII per crack tip (scenes with
                                                    crack_tips)
-            checkpoint.bin                         restart state at the last frame
-            run.json                               status: running | complete | aborted
+            checkpoint.bin                         restart state at the last frame (or stop)
+            run.json                               status: running | complete | stopped |
+                                                   aborted; step, time, frames, ETA
+            run.lock                               held while a run goes (one run per DIR)
           Shows progress (step, simulated time, wall time, ETA) on stderr and a one-line
           summary on stdout.
   check   Validate SCENE without running it: every bad value is reported with its key
@@ -52,22 +55,31 @@ Options:
                  same for any N
   --resume       continue a stopped run from DIR/checkpoint.bin (same scene)
   --quiet        no progress line
+  --force        run even when the estimates say it will not fit: more memory than the
+                 machine has available, or more output than DIR's disk has free
   --set K=V      override one scene value before validation; K is a key path as in error
                  messages (mpm.stress_update, bodies[1].velocity), V is JSON or a plain string:
                  --set mpm.stress_update=USL --set resolution=1 --set 'time.end=2.5'
   --help         this text
   --version      program version
 
-Exit status: 0 success; 1 I/O or internal error; 2 bad scene or command line (nothing
-is written); 3 the run stopped on a detected problem (particle left the grid, NaN,
-energy blow-up) after writing its last state; run.json says "aborted" and why.
+Exit status: 0 success; 1 internal error, or an I/O error before the run started (DIR
+cannot be created); 2 bad scene or command line, a checkpoint that --resume cannot use
+(another scene, method, dimension or an older format), or DIR in use by another run
+(nothing is written); 3 the run stopped on a detected problem
+(particle left the grid, NaN, energy blow-up; its last state is written) or an output
+could not be written (disk full, ulimit -f; the last complete frame and checkpoint
+stay); run.json says "aborted" and why; 130 / 143 stopped by SIGINT / SIGTERM after
+the current step, with a checkpoint there; run.json says "stopped" and how to resume
+(a second signal kills at once).
 )";
 
 struct Args {
   std::string command, scene, out;
   int threads = 0;
-  bool resume = false, quiet = false;
+  bool resume = false, quiet = false, force = false;
   std::vector<std::string> sets;
+  std::vector<std::string> argv;  // as typed: run.lock names it, the resume command repeats it
 };
 
 int usage_error(const std::string& msg) {
@@ -78,17 +90,26 @@ int usage_error(const std::string& msg) {
 int run_scene_command(const nlohmann::json& scene, const Args& a) {
   SceneMethod method = SceneMethod::build(scene);
   for (const auto& w : method.settings().warnings) std::fprintf(stderr, "cleave: warning: %s\n", w.c_str());
-  if (a.command == "check") {
-    const auto lines = method.describe();
-    for (std::size_t i = 0; i < lines.size(); ++i) std::printf("%s%s\n", i ? "" : "scene OK: ", lines[i].c_str());
-    return kOk;
-  }
   fs::path out = a.out;
   if (out.empty()) out = fs::path(a.scene).stem().string() + "_out";
+  if (a.command == "check") {
+    auto lines = method.describe();
+    const RunEstimate est = method.estimate();
+    for (const auto& l : describe_estimate(est, out)) lines.push_back(l);
+    for (std::size_t i = 0; i < lines.size(); ++i) std::printf("%s%s\n", i ? "" : "scene OK: ", lines[i].c_str());
+    try {  // check writes nothing, so a disk too small for the run is a warning here
+      check_disk(est, out);
+    } catch (const SceneError& e) {
+      std::fprintf(stderr, "cleave: warning: %s: %s (cleave run refuses it)\n", e.key_path().c_str(), e.reason().c_str());
+    }
+    return kOk;
+  }
   app::ProgressPrinter printer;
   RunOptions opt;
   opt.out = out;
   opt.resume = a.resume;
+  opt.command = app::shell_command(a.argv, false);
+  opt.resume_command = app::shell_command(a.argv, true);
   opt.progress_interval_s = printer.interval();
   if (!a.quiet) opt.progress = [&](const RunProgress& p) { printer(p); };
   long warnings = 0;
@@ -100,12 +121,17 @@ int run_scene_command(const nlohmann::json& scene, const Args& a) {
     printer.finish();
     if (warnings > 5) std::fprintf(stderr, "cleave: %ld warnings in all (5 shown)\n", warnings);
     const auto [work, unit] = method.work_per_step();
-    const double ns = 1e9 * s.wall_s / std::max(1.0, double(s.steps) * work);
-    std::printf("done: %ld steps to t = %.6g s, %.0f %ss, %d frames, %s wall (%.*f ns/%s-step, %d threads); "
-                "output in %s\n",
-                s.steps, s.time, work, unit.c_str(), s.frames, app::format_seconds(s.wall_s).c_str(),
-                ns < 10 ? 2 : 0, ns, unit.c_str(), omp_get_max_threads(), out.string().c_str());
+    std::printf("%s\n", app::summary_line(s, work, unit, omp_get_max_threads(), out.string()).c_str());
     return kOk;
+  } catch (const RunStopped& e) {
+    printer.finish();
+    std::fprintf(stderr, "cleave: %s\n", e.what());
+    return 128 + e.signal();  // the shell's convention for a process ended by that signal
+  } catch (const RunOutputFailed& e) {
+    printer.finish();
+    std::fprintf(stderr, "cleave: run stopped: %s\nthe frames and checkpoint written before are kept in %s; %s says "
+                 "\"aborted\"\n", e.what(), out.string().c_str(), (out / "run.json").string().c_str());
+    return kAborted;
   } catch (const RunAborted& e) {
     printer.finish();
     std::fprintf(stderr, "cleave: run stopped: %s\nlast state written to %s; %s says \"aborted\"\n", e.what(),
@@ -121,6 +147,7 @@ int main(int argc, char** argv) {
   if (!argv_s.empty() && (argv_s[0] == "render" || argv_s[0] == "compare" || argv_s[0] == "plot"))
     return app::viz_command(argv_s);
   Args a;
+  a.argv.assign(argv, argv + argc);
   for (std::size_t i = 0; i < argv_s.size(); ++i) {
     const std::string& s = argv_s[i];
     auto value = [&](const char* opt) -> std::string {
@@ -145,6 +172,8 @@ int main(int argc, char** argv) {
         a.resume = true;
       } else if (s == "--set") {
         a.sets.push_back(value("--set"));
+      } else if (s == "--force") {
+        a.force = true;
       } else if (s == "--quiet") {
         a.quiet = true;
       } else if (!s.empty() && s[0] == '-') {
@@ -168,10 +197,15 @@ int main(int argc, char** argv) {
 
   try {
     nlohmann::json scene = load_scene_file(a.scene);
-    for (const auto& kv : a.sets) apply_override(scene, kv);
+    set_resource_checks_forced(a.force);  // before the scene builds: its memory check reads it
+    apply_overrides(scene, a.sets);
     return run_scene_command(scene, a);
   } catch (const SceneError& e) {
-    std::fprintf(stderr, "cleave: %s: error at '%s': %s\n", a.scene.c_str(), e.key_path().c_str(), e.reason().c_str());
+    if (e.key_path().empty()) std::fprintf(stderr, "cleave: %s\n", e.reason().c_str());  // the file itself
+    else std::fprintf(stderr, "cleave: %s: error at '%s': %s\n", a.scene.c_str(), e.key_path().c_str(), e.reason().c_str());
+    return kBadInput;
+  } catch (const RunRefused& e) {
+    std::fprintf(stderr, "cleave: cannot run: %s\n", e.what());
     return kBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cleave: error: %s\n", e.what());

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -29,6 +30,44 @@ void ProgressPrinter::operator()(const RunProgress& p) {
 void ProgressPrinter::finish() {
   if (dirty_) std::fprintf(stderr, "\n");
   dirty_ = false;
+}
+
+std::string summary_line(const RunSummary& s, double work, const std::string& unit, int threads,
+                         const std::string& out) {
+  char b[2048];
+  const long steps = s.steps - s.first_step;  // this invocation's part
+  if (s.resumed && steps == 0) {
+    std::snprintf(b, sizeof b, "done: nothing to do: the run in %s was already complete at step %ld (t = %.6g s)",
+                  out.c_str(), s.steps, s.time);
+    return b;
+  }
+  const double ns = 1e9 * s.wall_s / std::max(1.0, double(steps) * work);
+  char part[96];
+  if (s.resumed) std::snprintf(part, sizeof part, "resumed at step %ld, %ld more steps", s.first_step, steps);
+  else std::snprintf(part, sizeof part, "%ld steps", steps);
+  std::snprintf(b, sizeof b, "done: %s to t = %.6g s, %.0f %ss, %d frames, %s wall (%.*f ns/%s-step, %d threads); output in %s",
+                part, s.time, work, unit.c_str(), s.frames, format_seconds(s.wall_s).c_str(), ns < 10 ? 2 : 0, ns,
+                unit.c_str(), threads, out.c_str());
+  return b;
+}
+
+std::string shell_command(const std::vector<std::string>& args, bool with_resume) {
+  std::string cmd;
+  auto add = [&](const std::string& a) {
+    const bool plain = !a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                         "0123456789_./=:,+-@%") == std::string::npos;
+    if (!cmd.empty()) cmd += ' ';
+    if (plain) {
+      cmd += a;
+      return;
+    }
+    cmd += '\'';
+    for (char c : a) cmd += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    cmd += '\'';
+  };
+  for (const auto& a : args) add(a);
+  if (with_resume && std::find(args.begin(), args.end(), "--resume") == args.end()) add("--resume");
+  return cmd;
 }
 
 }  // namespace cleave::app

@@ -1,5 +1,9 @@
-// Terminal progress for long runs: an updating line on a terminal, periodic plain lines in a log.
+// Terminal progress for long runs: an updating line on a terminal, periodic plain lines in a log;
+// and the lines that close a run.
 #pragma once
+#include <string>
+#include <vector>
+
 #include "libmpm/method/run_loop.hpp"
 
 namespace cleave::app {
@@ -17,5 +21,14 @@ class ProgressPrinter {
 };
 
 std::string format_seconds(double s);
+
+// The line `cleave run` prints when it ends well: what this invocation did, so a resumed run
+// reports its own part, and a resumed complete run says there was nothing to do.
+std::string summary_line(const RunSummary& s, double work, const std::string& unit, int threads,
+                         const std::string& out);
+
+// The command line `args` (argv as typed) as one shell-pasteable string, quoting where needed;
+// with_resume appends --resume unless it is there.
+std::string shell_command(const std::vector<std::string>& args, bool with_resume);
 
 }  // namespace cleave::app

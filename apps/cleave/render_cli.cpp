@@ -17,6 +17,8 @@ namespace {
 const char* kRenderHelp = R"(Usage:
   cleave render OUT [options]      images (and a movie) of the particle series in OUT
   cleave compare OUT --photo IMG --frame SPEC --map X0,Y0,SCALE[,ANGLE] [--points FILE] [options]
+  cleave compare OUT --run OTHER --frame SPEC --fringes MODE [options]
+                                   fringe-order RMS difference between two runs of a scene
   cleave plot OUT [--size WxH] [--images DIR] [--cod TIME]
                                    energy (global.csv) and J/K (crack_tips.csv) plots; --cod: the
                                    crack-opening profile of the crack frame nearest TIME (s)
@@ -29,10 +31,15 @@ Frames and image:
   --length-unit U      unit of --roi, --map, --cut-plane and --points coordinates: m (default), mm, cm, um
   --roi X0,Y0,X1,Y1    region of interest in model coordinates
   --zoom Z             zoom about the window centre (default 1)
-  --background C       white | black | gray | R,G,B (0-1); default white for colour maps and a
-                       blue-gray for fringes (so neither black nor white fringes merge with it)
+  --background C       white (default) | black | gray | R,G,B (0-1)
   --title TEXT         title above the image
   --no-time            no time stamp       --no-colorbar   no colour bar
+Figures (2D frames and sections; all on by default, docs/rendering.md "Figures"):
+  --keep-size          the image is exactly --size (default: cropped to the bodies, --size the most)
+  --no-outline         no outline (default: smooth outlines in dark grey, not the particles' squares)
+  --no-scale-bar       no scale bar (default: a round length with its unit below the bodies)
+  --smooth S           stress smoothing width in particle spacings (default 1.5; 0: the particles'
+                       stresses as written, with MPM's cell-crossing noise)
 Colouring (default: principal_stress_difference, viridis; signed fields get a diverging map):
   --field NAME         sxx syy szz sxy von_mises principal_stress_difference ux uy |u| vx vy |v| damage
                        or any point array, ARRAY:K for a component
@@ -64,6 +71,9 @@ Photo comparison (compare):
   --points FILE        digitised points "x y N" per line: prints the RMS fringe-order difference
   --out PREFIX         output prefix for PREFIX_side_by_side.png and PREFIX_overlay.png
                        (default OUT/compare)
+  --run OTHER          instead of a photo: another run of the scene (another resolution, say);
+                       prints the RMS of the fringe-order difference over the bodies; with --out,
+                       PREFIX_difference.png shows |difference| (white 0, black 1 fringe or more)
 )";
 
 std::vector<double> numbers(const std::string& opt, const std::string& s, std::size_t lo, std::size_t hi) {
@@ -95,9 +105,8 @@ int viz_command(const std::vector<std::string>& args) {
   o.series = args[1];
   double L = 1.0;
   std::vector<std::pair<std::string, std::string>> coords;  // options whose numbers use --length-unit
-  std::optional<std::string> photo, points, map;
+  std::optional<std::string> photo, points, map, other_run;
   std::string out_prefix;
-  bool background_set = false;
   std::optional<double> cod_time;
   double thickness_mm = 1.0, fringe_constant = 0, brewster = 0, wavelength_nm = 546, polarizer_deg = 0, kf = 0.0889;
   try {
@@ -129,7 +138,6 @@ int viz_command(const std::vector<std::string>& args) {
         o.zoom = number(a, value());
         if (!(o.zoom > 0)) throw std::invalid_argument("--zoom must be positive");
       } else if (a == "--background") {
-        background_set = true;
         const std::string v = value();
         if (v == "white") o.background = {1, 1, 1};
         else if (v == "black") o.background = {0, 0, 0};
@@ -141,6 +149,13 @@ int viz_command(const std::vector<std::string>& args) {
       } else if (a == "--title") o.title = value();
       else if (a == "--no-time") o.time_stamp = false;
       else if (a == "--no-colorbar") o.colorbar = false;
+      else if (a == "--keep-size") o.tight = false;
+      else if (a == "--no-outline") o.outline = false;
+      else if (a == "--no-scale-bar") o.scale_bar = false;
+      else if (a == "--smooth") {
+        o.smooth = number(a, value());
+        if (!(o.smooth >= 0) || o.smooth > 20) throw std::invalid_argument("--smooth must be between 0 and 20 particle spacings");
+      }
       else if (a == "--field") o.field = value();
       else if (a == "--colormap") o.colormap = value();
       else if (a == "--range") {
@@ -171,6 +186,7 @@ int viz_command(const std::vector<std::string>& args) {
       } else if (a == "--photo") photo = value();
       else if (a == "--points") points = value();
       else if (a == "--map") map = value();
+      else if (a == "--run") other_run = value();
       else if (a == "--out") out_prefix = value();
       else throw std::invalid_argument("unknown option '" + a + "'");
     }
@@ -187,7 +203,6 @@ int viz_command(const std::vector<std::string>& args) {
         o.cut_plane = std::array<double, 6>{c[0] * L, c[1] * L, c[2] * L, c[3], c[4], c[5]};
       }
     }
-    if (o.fringes && !background_set) o.background = {0.35, 0.42, 0.55};
     if (!(thickness_mm > 0)) throw std::invalid_argument("--thickness must be positive (mm)");
     if (!(wavelength_nm > 0)) throw std::invalid_argument("--wavelength must be positive (nm)");
     o.photo.thickness = thickness_mm * 1e-3;
@@ -212,8 +227,15 @@ int viz_command(const std::vector<std::string>& args) {
       for (const auto& f : files) std::printf("%s\n", f.string().c_str());
       return 0;
     }
+    if (cmd == "compare" && other_run) {
+      if (!o.fringes) throw std::invalid_argument("compare --run needs --fringes MODE (and the photoelastic constants)");
+      const RunComparison r = compare_runs(o, *other_run, out_prefix.empty() ? "" : out_prefix + "_difference.png");
+      std::printf("fringe order: RMS difference %.4f, mean absolute %.4f over %zu pixels (t = %.6g s and %.6g s)\n",
+                  r.rms, r.mean_abs, r.pixels, r.time_a, r.time_b);
+      return 0;
+    }
     if (cmd == "compare") {
-      if (!photo || !map) throw std::invalid_argument("compare needs --photo IMG and --map X0,Y0,SCALE[,ANGLE]");
+      if (!photo || !map) throw std::invalid_argument("compare needs --photo IMG and --map X0,Y0,SCALE[,ANGLE] (or --run OTHER)");
       if (!o.fringes) throw std::invalid_argument("compare needs --fringes MODE (and the photoelastic constants)");
       const auto mv = numbers("--map", *map, 3, 4);
       if (!(mv[2] > 0)) throw std::invalid_argument("--map: SCALE must be positive");

@@ -32,7 +32,7 @@ for cell in (4, 2, 1, 0.5):
         subprocess.run([cleave, "run", str(out / "scene.json"), "--out", str(out / "run")], check=True,
                        stdout=subprocess.DEVNULL)
         wall = time.time() - t0
-        J = float(list(csv.DictReader(open(out / "run/crack_tips.csv")))[-1]["J1"])
+        J = float(list(csv.DictReader(open(out / "run/crack_tips.csv")))[-1]["J1_J_per_m2"])
         row.append(f"{J:.5f}, {100 * (J / G_beam - 1):+.2f} %")
         row.append(f"{wall:.1f}")
     print(" | ".join([row[0], row[1], row[3], f"{row[2]} / {row[4]}"]))

@@ -26,4 +26,31 @@ class RunAborted : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A run that stopped because an output could not be written (disk full, file size limit): the
+// message names the file and the cause. Nothing of the state at the failure is written; the last
+// complete frame and checkpoint are kept, so the run can be resumed once there is room.
+class RunOutputFailed : public RunAborted {
+ public:
+  using RunAborted::RunAborted;
+};
+
+// A run that cannot start in its output directory: the checkpoint to resume from is missing, of
+// another scene, method, dimension or format, or another run holds the directory. Nothing was
+// written; the CLI exits 2 as for a bad scene.
+class RunRefused : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A run stopped on request (SIGINT, SIGTERM) after finishing its step and writing a checkpoint
+// there; run.json says "stopped" and how to resume.
+class RunStopped : public std::runtime_error {
+ public:
+  RunStopped(int signal, const std::string& message) : std::runtime_error(message), signal_(signal) {}
+  int signal() const { return signal_; }
+
+ private:
+  int signal_;
+};
+
 }  // namespace cleave

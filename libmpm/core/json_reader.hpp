@@ -39,7 +39,9 @@ class ObjectReader {
 
   double number(const char* key, double scale = 1.0) const {
     if (!has(key)) throw SceneError(at(key), "missing");
-    return number_of(j_[key], at(key)) * scale;
+    const double v = number_of(j_[key], at(key)) * scale;
+    if (!std::isfinite(v)) throw SceneError(at(key), "overflows after unit scaling (got " + j_[key].dump() + ")");
+    return v;
   }
   double number_or(const char* key, double fallback, double scale = 1.0) const {
     return has(key) ? number(key, scale) : fallback;
@@ -88,7 +90,9 @@ class ObjectReader {
     for (int d = 0; d < Dim; ++d) {
       if (vj[d].is_null()) continue;
       mask |= uint8_t(1u << d);
-      v[d] = number_of(vj[d], at(key) + "[" + std::to_string(d) + "]") * scale;
+      const std::string p = at(key) + "[" + std::to_string(d) + "]";
+      v[d] = number_of(vj[d], p) * scale;
+      if (!std::isfinite(v[d])) throw SceneError(p, "overflows after unit scaling (got " + vj[d].dump() + ")");
     }
     if (!mask) throw SceneError(at(key), "every component is null: the condition does nothing");
     return {mask, v};
@@ -107,7 +111,11 @@ class ObjectReader {
                                  (Dim == 2 ? "[x, y]" : "[x, y, z]") + ") for this " +
                                  std::to_string(Dim) + "D scene");
     Vec<Dim> r;
-    for (int d = 0; d < Dim; ++d) r[d] = number_of(v[d], path + "[" + std::to_string(d) + "]") * scale;
+    for (int d = 0; d < Dim; ++d) {
+      const std::string p = path + "[" + std::to_string(d) + "]";
+      r[d] = number_of(v[d], p) * scale;
+      if (!std::isfinite(r[d])) throw SceneError(p, "overflows after unit scaling (got " + v[d].dump() + ")");
+    }
     return r;
   }
 

@@ -3,12 +3,16 @@
 // in the scene, and an unknown name is answered with the registered ones. The library is linked
 // whole-archive (libmpm/CMakeLists.txt), so those static registrars are never dropped.
 #pragma once
+#include <cxxabi.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <functional>
 #include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -36,9 +40,21 @@ class NameTable {
     static NameTable t;
     return t;
   }
+  // A second style under a taken name would replace the first without a word (which one wins would
+  // depend on the link order), so it is a programming error, raised at static initialisation.
   bool add(const std::string& name, Entry e, int rank = 0) {
-    items_.insert_or_assign(name, Item{rank, std::move(e)});
+    if (!items_.emplace(name, Item{rank, std::move(e)}).second)
+      throw std::logic_error("duplicate registration: '" + name + "' is already registered in the table of " +
+                             table_name() + " (two styles under one name; rename one)");
     return true;
+  }
+  // The table's name in messages: its tag type, demangled ("cleave::Method<2>", "cleave::LoadKind").
+  static std::string table_name() {
+    int status = 0;
+    char* d = abi::__cxa_demangle(typeid(Tag).name(), nullptr, nullptr, &status);
+    std::string n = status == 0 && d ? d : typeid(Tag).name();
+    std::free(d);
+    return n;
   }
   bool has(const std::string& name) const { return items_.count(name) != 0; }
   const Entry* find(const std::string& name) const {
@@ -106,7 +122,7 @@ class Registry {
   }
 
  private:
-  NameTable<Factory> table_;
+  NameTable<Factory, Base> table_;  // tagged by Base: its messages say "cleave::Method<2>"
 };
 
 }  // namespace cleave

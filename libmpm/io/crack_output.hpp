@@ -1,5 +1,5 @@
-// Crack frames (OUT/cracks_NNNNNN.vtu, indexed by OUT/cracks.pvd): one polyline cell per crack
-// through its crack particles, with point data
+// Crack frames (OUT/cracks_NNNNNN.vtu, indexed by OUT/cracks.pvd): each crack a path through its
+// crack particles, written as line segments (VTK_LINE, in order along the crack), with point data
 //   above, below      positions of the crack surfaces above and below (m, 3 components)
 //   cod               crack opening displacement above - below (m, 3 components)
 //   cod_normal        its component along the left normal of the crack (opening > 0, overlap < 0)

@@ -15,6 +15,7 @@ namespace cleave::io {
 namespace {
 
 std::string format17(double v) {
+  if (v == 0.0) v = 0.0;  // -0 (a sum of cancelling terms, -1 * 0) is printed as 0
   char buf[64];
   auto r = std::to_chars(buf, buf + sizeof(buf), v, std::chars_format::general, 17);
   return std::string(buf, r.ptr);

@@ -1,6 +1,8 @@
 // Time series of scalars (energies, forces, crack length) as CSV, one row per output step. Rows
 // are flushed as they are written so a crashed run keeps its history, and a resumed run cuts the
-// rows after its checkpoint time and appends to the same file.
+// rows after its checkpoint time and appends to the same file. By convention (docs/scenes.md,
+// "Output files") every column name ends in its SI unit ("time_s", "J1_J_per_m2"), counts and
+// indices have none ("step", "crack"), and the first column is the time.
 #pragma once
 #include <filesystem>
 #include <fstream>
@@ -17,7 +19,7 @@ class CsvSeries {
   // ',', '"' or line breaks (std::invalid_argument).
   CsvSeries(std::filesystem::path file, std::vector<std::string> columns, bool append);
 
-  // Writes one row with 17 significant digits (round-trip exact) and flushes. values.size() must
+  // Writes one row with 17 significant digits (round-trip exact; -0 as 0) and flushes. values.size() must
   // equal the number of columns (std::invalid_argument); I/O failure throws std::runtime_error.
   void row(const std::vector<double>& values);
 

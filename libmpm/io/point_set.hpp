@@ -19,8 +19,10 @@ struct PointArray {
 struct PointSet {
   std::vector<double> points;  // 3 per point (2D data padded with z = 0)
   std::vector<PointArray> arrays;  // point data
-  // Optional. If empty every point becomes a VTK_VERTEX cell (type 1); otherwise the cells are
-  // VTK_POLY_LINE (type 4) with these point ids and there are no vertex cells (crack paths).
+  // Optional paths through the points (crack paths). If empty every point becomes a VTK_VERTEX
+  // cell (type 1); otherwise each path is written as VTK_LINE cells (type 3), one per segment in
+  // path order (a one-point path: a vertex), and there are no other cells. Not VTK_POLY_LINE
+  // (type 4): meshio drops it.
   std::vector<std::vector<int64_t>> polylines;
   std::size_t size() const { return points.size() / 3; }
 };

@@ -13,9 +13,22 @@
 namespace cleave::io {
 
 // run.json: {"status", "message", "step", "time"} plus the keys of `extra`, replaced atomically
-// (written beside and renamed), so a reader never sees half a file.
+// (written beside and renamed), so a reader never sees half a file. Throws std::runtime_error
+// naming the file and the cause (strerror) when it cannot be written.
 void write_run_status(const std::filesystem::path& out, const std::string& status, const std::string& message,
                       long step, double time, const nlohmann::json& extra = nlohmann::json::object());
+
+// The last word of a run whose disk is full: like write_run_status, but when the atomic write
+// fails, run.json is overwritten in place (its blocks are already allocated). Never throws; returns
+// "" or why run.json could not be written.
+std::string write_final_run_status(const std::filesystem::path& out, const std::string& status,
+                                   const std::string& message, long step, double time,
+                                   const nlohmann::json& extra = nlohmann::json::object());
+
+// Removes the temporaries ("NAME.tmp") that atomic writes of the run's outputs leave when they are
+// cut short: frames and indexes of `series`, and the named `files` (checkpoint.bin, run.json, ...).
+void remove_temporaries(const std::filesystem::path& out, const std::vector<std::string>& series,
+                        const std::vector<std::string>& files);
 
 // "<series>_NNNNNN.vtu"
 std::string frame_file_name(const std::string& series, int k);

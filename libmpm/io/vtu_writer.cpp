@@ -1,6 +1,7 @@
 // Layout of the file: an XML header whose DataArrays all point (offset=...) into one raw
 // <AppendedData> section, in the reverse of their declaration order (write_vtu says why); each
-// block there is a UInt64 byte count followed by the bytes. Offsets count from the byte after the
+// block there is a UInt64 byte count followed by the bytes, or with zlib VTK's compression header
+// and the deflated blocks (io/appended_blocks.hpp). Offsets count from the byte after the
 // leading '_'. The section ends with '\n' before </AppendedData> because meshio's raw reader strips
 // everything after the last newline.
 #include "libmpm/io/vtu_writer.hpp"
@@ -9,10 +10,15 @@
 #include <bit>
 #include <cstdint>
 #include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <system_error>
 #include <vector>
+
+#include "libmpm/io/appended_blocks.hpp"
 
 namespace cleave::io {
 
@@ -89,37 +95,51 @@ void check(const PointSet& ps) {
                                     " out of range");
 }
 
+// A double as the nearest float; beyond float's range +-inf (a plain cast would be undefined there).
+float to_float(double v) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  if (v > kMax) return std::numeric_limits<float>::infinity();
+  if (v < -kMax) return -std::numeric_limits<float>::infinity();
+  return static_cast<float>(v);
+}
+
 }  // namespace
 
-void write_vtu(const std::filesystem::path& file, const PointSet& ps) {
+void write_vtu(const std::filesystem::path& file, const PointSet& ps, const VtuFormat& format) {
   check(ps);
   const std::size_t n = ps.size();
 
-  // Cell arrays: one vertex per point, or the given polylines.
+  // Cell arrays: one vertex per point, or the polylines cut into VTK_LINE segments (meshio, like
+  // many readers, has no VTK_POLY_LINE; a segment list is the same path in every reader). A
+  // one-point polyline becomes a vertex so that no point is left without a cell.
   std::vector<std::int64_t> connectivity, offsets;
   std::vector<std::uint8_t> types;
+  auto cell = [&](std::initializer_list<std::int64_t> ids, std::uint8_t type) {
+    connectivity.insert(connectivity.end(), ids);
+    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+    types.push_back(type);
+  };
   if (ps.polylines.empty()) {
-    connectivity.resize(n);
-    offsets.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      connectivity[i] = static_cast<std::int64_t>(i);
-      offsets[i] = static_cast<std::int64_t>(i + 1);
-    }
-    types.assign(n, 1);  // VTK_VERTEX
+    for (std::size_t i = 0; i < n; ++i) cell({static_cast<std::int64_t>(i)}, 1);  // VTK_VERTEX
   } else {
     for (const auto& line : ps.polylines) {
-      connectivity.insert(connectivity.end(), line.begin(), line.end());
-      offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+      if (line.size() == 1) cell({line[0]}, 1);
+      for (std::size_t k = 1; k < line.size(); ++k) cell({line[k - 1], line[k]}, 3);  // VTK_LINE
     }
-    types.assign(ps.polylines.size(), 4);  // VTK_POLY_LINE
   }
 
-  auto f64 = [](const std::string& name, int comps, const std::vector<double>& v) {
-    return Block{"Float64", name, comps, v.data(), v.size() * sizeof(double)};
+  // Float32: converted copies (reserved up front, so the blocks' pointers stay valid).
+  std::vector<std::vector<float>> narrowed;
+  narrowed.reserve(ps.arrays.size() + 1);
+  auto real = [&](const std::string& name, int comps, const std::vector<double>& v) {
+    if (!format.float32) return Block{"Float64", name, comps, v.data(), v.size() * sizeof(double)};
+    auto& f = narrowed.emplace_back(v.size());
+    std::transform(v.begin(), v.end(), f.begin(), to_float);
+    return Block{"Float32", name, comps, f.data(), f.size() * sizeof(float)};
   };
   std::vector<Block> point_data;
-  for (const auto& a : ps.arrays) point_data.push_back(f64(a.name, a.components, a.values));
-  const Block points = f64("Points", 3, ps.points);
+  for (const auto& a : ps.arrays) point_data.push_back(real(a.name, a.components, a.values));
+  const Block points = real("Points", 3, ps.points);
   const std::vector<Block> cells = {
       {"Int64", "connectivity", 1, connectivity.data(), connectivity.size() * sizeof(std::int64_t)},
       {"Int64", "offsets", 1, offsets.data(), offsets.size() * sizeof(std::int64_t)},
@@ -127,13 +147,14 @@ void write_vtu(const std::filesystem::path& file, const PointSet& ps) {
 
   // Header. The blocks are appended in the reverse of the order they are declared (the first
   // declared array's block comes last): offsets are free in the format, and this order is the one
-  // meshio 5.0.0 (Debian 12) reads right. Its raw reader converts the blocks to base64 one by one,
-  // from the start of the section, rewriting each DataArray's offset="..." in place and finding
-  // the next block's array as the first in document order whose offset equals the block's raw
-  // offset. In declaration order an earlier array's rewritten offset can equal a later array's raw
-  // offset (fields "displacement, stress": "Points" then reads another array's bytes); in reverse
-  // order every array not yet converted precedes the converted ones, so the first match is the
-  // right one. Raw rather than base64: 3/4 of the size, and about ten times faster for VTK to read.
+  // meshio 5.0.0 (Debian 12) reads right. Its appended-data reader (raw or compressed) converts the
+  // blocks to base64 one by one, from the start of the section, rewriting each DataArray's
+  // offset="..." in place and finding the next block's array as the first in document order whose
+  // offset equals the block's raw offset. In declaration order an earlier array's rewritten offset
+  // can equal a later array's raw offset (fields "displacement, stress": "Points" then reads another
+  // array's bytes); in reverse order every array not yet converted precedes the converted ones, so
+  // the first match is the right one. Raw rather than base64: 3/4 of the size, and about ten times
+  // faster for VTK to read.
   std::vector<const Block*> order;
   std::string xml;
   std::vector<std::size_t> offset_at;  // where in `xml` each declared array's offset goes
@@ -148,7 +169,10 @@ void write_vtu(const std::filesystem::path& file, const PointSet& ps) {
   xml +=
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-      "header_type=\"UInt64\">\n"
+      "header_type=\"UInt64\"";
+  if (format.zlib) xml += " compressor=\"vtkZLibDataCompressor\"";
+  xml +=
+      ">\n"
       "  <UnstructuredGrid>\n"
       "    <Piece NumberOfPoints=\"" + std::to_string(n) + "\" NumberOfCells=\"" +
       std::to_string(types.size()) + "\">\n";
@@ -165,19 +189,23 @@ void write_vtu(const std::filesystem::path& file, const PointSet& ps) {
       "  <AppendedData encoding=\"raw\">\n"
       "   _";
   std::reverse(order.begin(), order.end());
+  std::vector<std::span<const char>> bytes;
+  for (const Block* b : order) bytes.emplace_back(static_cast<const char*>(b->data), b->bytes);
+  const std::vector<AppendedBlock> encoded = encode_appended(bytes, format.zlib);
   std::uint64_t offset = 0;
   std::vector<std::string> offsets_text(order.size());
   for (std::size_t k = 0; k < order.size(); ++k) {  // appended order: the last declared first
     offsets_text[order.size() - 1 - k] = std::to_string(offset);
-    offset += sizeof(std::uint64_t) + order[k]->bytes;
+    offset += encoded[k].size();
   }
   for (std::size_t k = order.size(); k-- > 0;) xml.insert(offset_at[k], offsets_text[k]);  // back to front
 
   detail::write_atomically(file, [&](std::ostream& out) {
     out.write(xml.data(), static_cast<std::streamsize>(xml.size()));
-    for (const Block* b : order) {
-      out.write(reinterpret_cast<const char*>(&b->bytes), sizeof(b->bytes));
-      if (b->bytes) out.write(static_cast<const char*>(b->data), static_cast<std::streamsize>(b->bytes));
+    for (const AppendedBlock& b : encoded) {
+      out.write(reinterpret_cast<const char*>(b.header.data()),
+                static_cast<std::streamsize>(b.header.size() * sizeof(std::uint64_t)));
+      if (!b.payload.empty()) out.write(b.payload.data(), static_cast<std::streamsize>(b.payload.size()));
     }
     out << "\n  </AppendedData>\n</VTKFile>\n";
   });

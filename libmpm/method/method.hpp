@@ -55,15 +55,17 @@ class Method {
   virtual std::string fastest_point() const = 0;
 
   // --- observables ---
-  // global.csv: time, step, then the method's energies, works and momenta (SI units).
+  // global.csv: time_s, step, then the method's energies, works and momenta, each column name
+  // ending in its SI unit (kinetic_energy_J; counts such as step have none).
   virtual std::vector<std::string> global_columns() const = 0;
   virtual GlobalRow global_row() const = 0;
   // The point-set series written at every frame: "particles" first, then e.g. "cracks".
   virtual std::vector<std::string> frame_series() const = 0;
   virtual io::PointSet frame(std::size_t series) = 0;
   // crack_tips.csv: empty columns when the scene asks for no tip output. The leading columns are
-  // the same for every method: time, crack, tip, x, y[, z] (crack: index of the crack or tracker;
-  // tip: 0 the start, 1 the end of a crack); then the method's quantities (speed, J1, KI, ...).
+  // the same for every method (method/tip_table.hpp): time_s, crack, tip, x_m, y_m[, z_m],
+  // speed_m_per_s (crack: index of the crack or tracker; tip: 0 the start, 1 the end of a crack);
+  // then the method's quantities with their units (J1_J_per_m2, KI_Pa_sqrt_m, ...).
   virtual std::vector<std::string> tip_columns() const { return {}; }
   virtual std::vector<std::vector<double>> tip_rows() { return {}; }
   // Keys added to run.json beside the status (e.g. the first branching of a peridynamic crack).

@@ -1,9 +1,12 @@
 #include "libmpm/method/run_loop.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -11,9 +14,12 @@
 
 #include "libmpm/core/error.hpp"
 #include "libmpm/io/csv_writer.hpp"
+#include "libmpm/io/output_lock.hpp"
 #include "libmpm/io/pvd_writer.hpp"
 #include "libmpm/io/run_files.hpp"
 #include "libmpm/io/vtu_writer.hpp"
+#include "libmpm/method/checkpoint.hpp"
+#include "libmpm/method/stop_signals.hpp"
 
 namespace cleave {
 namespace fs = std::filesystem;
@@ -27,62 +33,22 @@ uint64_t scene_hash(const nlohmann::json& scene) {
 
 namespace {
 
-// checkpoint.bin: this header, the loop's counters, then the method's state (Method::save).
-// Format 4 is the first shared by every method (formats 1-3 were per method); 5 adds the crack-tip
-// table's last records (method/tip_table.hpp) to every method's state.
-constexpr char kMagic[8] = {'C', 'L', 'V', 'E', 'C', 'K', 'P', '5'};
-
-struct LoopCounters {
-  uint64_t scene_hash = 0;
-  int64_t next_frame = 0;  // index of the next frame of every series (64 bits: no padding in the file)
-  double next_frame_time = 0.0, next_global_time = 0.0, next_tip_time = 0.0;
+// A failed write of one of the run's outputs; handled once, at the end of run_method.
+struct OutputFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
-template <int Dim>
-void write_checkpoint(const fs::path& file, const Method<Dim>& method, const LoopCounters& c) {
-  const auto tmp = file.string() + ".tmp";
-  {
-    std::ofstream o(tmp, std::ios::binary | std::ios::trunc);
-    if (!o) throw std::runtime_error(tmp + ": cannot write checkpoint");
-    o.write(kMagic, sizeof kMagic);
-    char name[24] = {};
-    std::strncpy(name, method.name(), sizeof name - 1);
-    o.write(name, sizeof name);
-    StateWriter w(o);
-    w.value(uint32_t(Dim));
-    w.value(c);
-    method.save(w);
-    if (!o) throw std::runtime_error(tmp + ": error while writing checkpoint");
-  }
-  fs::rename(tmp, file);
+// `what` with the cause errno names appended, unless the writer already named it.
+std::string with_cause(const std::string& what, int err) {
+  if (err == 0) return what;
+  const std::string cause = std::strerror(err);
+  return what.find(cause) != std::string::npos ? what : what + ": " + cause;
 }
 
-template <int Dim>
-LoopCounters read_checkpoint(const fs::path& file, Method<Dim>& method, uint64_t scene_hash) {
-  std::ifstream i(file, std::ios::binary);
-  if (!i) throw std::runtime_error(file.string() + ": no checkpoint to resume from");
-  char magic[8] = {}, name[24] = {};
-  i.read(magic, sizeof magic);
-  if (!i || std::memcmp(magic, kMagic, 7) != 0) throw std::runtime_error(file.string() + ": not a Cleave checkpoint");
-  if (magic[7] != kMagic[7])
-    throw std::runtime_error(file.string() + ": written by an earlier Cleave (checkpoint format " +
-                             std::string(1, magic[7]) + "; this version reads format " +
-                             std::string(1, kMagic[7]) + "); run without --resume");
-  i.read(name, sizeof name);
-  name[sizeof name - 1] = 0;
-  StateReader r(i, file.string());
-  uint32_t dim = 0;
-  r.value(dim);
-  if (std::string(name) != method.name() || dim != uint32_t(Dim))
-    throw std::runtime_error(file.string() + ": the checkpoint is of a " + std::to_string(dim) + "D " + name +
-                             " run; the scene is a " + std::to_string(Dim) + "D " + method.name() +
-                             " scene (run without --resume)");
-  LoopCounters c;
-  r.value(c);
-  if (c.scene_hash != scene_hash)
-    throw std::runtime_error(file.string() + ": written for a different scene; run without --resume");
-  method.load(r);
-  return c;
+std::string at_step(long step, double t) {
+  std::ostringstream s;
+  s << "step " << step << ", time " << t << " s: ";
+  return s.str();
 }
 
 }  // namespace
@@ -94,140 +60,228 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
   const RunSettings& set = method.settings();
   const fs::path out = opt.out;
   const fs::path ck_path = out / "checkpoint.bin", csv_path = out / "global.csv", tips_path = out / "crack_tips.csv";
-  if (opt.resume && !fs::exists(ck_path)) throw std::runtime_error(ck_path.string() + ": no checkpoint to resume from");
+  if (opt.resume && !fs::exists(ck_path)) throw RunRefused(ck_path.string() + ": no checkpoint to resume from");
   fs::create_directories(out);
+  // Before anything in the directory is touched: a second run into it is refused here.
+  const io::OutputLock lock(out, io::describe_this_process() + (opt.command.empty() ? "" : ": " + opt.command));
+  std::optional<StopSignals> signals;
+  if (opt.handle_signals) signals.emplace();
+  const std::string resume_command =
+      opt.resume_command.empty() ? "cleave run SCENE --out " + out.string() + " --resume" : opt.resume_command;
 
   const std::vector<std::string> series = method.frame_series();
+  std::vector<std::string> any_series = {"particles", "cracks"};  // a directory may hold another method's run
+  for (const auto& s : series)
+    if (std::find(any_series.begin(), any_series.end(), s) == any_series.end()) any_series.push_back(s);
+  const std::vector<std::string> run_files = {"global.csv", "checkpoint.bin", "run.json", "crack_tips.csv"};
+  io::remove_temporaries(out, any_series, run_files);  // what a killed run's atomic writes left
   std::vector<io::PvdIndex> pvd;
   for (const auto& s : series) pvd.emplace_back(out / (s + ".pvd"));
   const std::vector<std::string> tip_cols = method.tip_columns();
   const bool tips = !tip_cols.empty();
 
   LoopCounters ck;
+  long ck_step = -1;  // the checkpoint --resume would continue from (-1: none yet)
+  double ck_time = 0.0;
+  RunSummary sum;
+  sum.resumed = opt.resume;
   if (opt.resume) {
     ck = read_checkpoint<Dim>(ck_path, method, opt.scene_hash);
+    ck_step = method.step_count();
+    ck_time = method.time();
     for (std::size_t k = 0; k < series.size(); ++k) pvd[k] = io::resumed_series(out / (series[k] + ".pvd"), method.time());
-    io::CsvSeries::truncate_after(csv_path, method.time());
-    io::CsvSeries::truncate_after(tips_path, method.time());
-  } else {
-    // A fresh run replaces the outputs of an earlier one in the same directory (of any method).
-    io::remove_run_outputs(out, {"particles", "cracks"}, {"global.csv", "checkpoint.bin", "run.json", "crack_tips.csv"});
   }
-  io::CsvSeries csv(csv_path, method.global_columns(), opt.resume);
-  std::optional<io::CsvSeries> tip_csv;
-  if (tips) tip_csv.emplace(tips_path, tip_cols, opt.resume);
-  auto status = [&](const char* s, const std::string& msg) {
-    nlohmann::json info = method.run_info();
-    info["method"] = method.name();
-    io::write_run_status(out, s, msg, method.step_count(), method.time(), info);
-  };
-  status("running", "");
+  sum.first_step = method.step_count();
 
-  const double eps = 1e-9 * set.dt;
-  RunSummary sum;
-  auto write_frame = [&]() {
-    for (std::size_t k = 0; k < series.size(); ++k) {
-      const std::string name = io::frame_file_name(series[k], static_cast<int>(ck.next_frame));
-      io::write_vtu(out / name, method.frame(k));
-      pvd[k].add(method.time(), name);
-      pvd[k].write();
+  // Every write of an output goes through here, so that a full disk or a file size limit is named
+  // (the writer's message, with errno's cause) and handled once, below.
+  auto output = [&](auto&& write) {
+    errno = 0;
+    try {
+      write();
+    } catch (const std::invalid_argument&) {
+      throw;  // a bug in what was written, not the disk
+    } catch (const std::runtime_error& e) {
+      throw OutputFailure(with_cause(e.what(), errno));
     }
-    ++ck.next_frame;
-    ++sum.frames;
-  };
-  auto checkpoint = [&]() {
-    ck.scene_hash = opt.scene_hash;
-    write_checkpoint<Dim>(ck_path, method, ck);
-    status("running", "");  // run.json follows the run: step and time of the last checkpoint
-  };
-  auto record_global = [&]() {
-    const GlobalRow g = method.global_row();
-    csv.row(g.values);
-    sum.observe_energy(g.total_energy);
-    return g;
-  };
-  auto record_tips = [&]() {
-    for (const auto& row : method.tip_rows()) tip_csv->row(row);
-  };
-  auto abort_run = [&](const std::string& msg) {
-    write_frame();
-    status("aborted", msg);
-    throw RunAborted(msg);
-  };
-  auto at = [&](double t) {
-    std::ostringstream s;
-    s << "step " << method.step_count() << ", time " << t << " s: ";
-    return s.str();
   };
 
-  if (!opt.resume) {
-    record_global();
-    if (tips) record_tips();
-    write_frame();
-    ck.next_frame_time = set.output.interval;
-    ck.next_global_time = set.output.global_interval;
-    ck.next_tip_time = set.output.tip_interval;
-    checkpoint();
-  }
+  const double t_start = method.time();  // ETA from the progress since this process started
+  auto progress_now = [&]() {
+    RunProgress p;
+    p.step = method.step_count();
+    p.time = method.time();
+    p.end_time = set.end_time;
+    p.wall_s = std::chrono::duration<double>(clock::now() - t0).count();
+    const double frac = (p.time - t_start) / std::max(set.end_time - t_start, 1e-300);
+    p.eta_s = frac > 0 ? p.wall_s * (1.0 - frac) / frac : 0.0;
+    p.frames = ck.next_frame;
+    return p;
+  };
+  auto info = [&](const std::string& s) {
+    nlohmann::json j = method.run_info();
+    j["method"] = method.name();
+    j["end_time"] = set.end_time;
+    j["frames"] = ck.next_frame;
+    if (ck_step >= 0) j["checkpoint"] = {{"step", ck_step}, {"time", ck_time}};
+    if (s == "running") {
+      const RunProgress p = progress_now();
+      j["wall_s"] = p.wall_s;
+      j["eta_s"] = p.eta_s;
+      j["pid"] = ::getpid();
+    }
+    if (s == "stopped" || (s == "aborted" && ck_step >= 0)) j["resume"] = resume_command;
+    return j;
+  };
+  auto status = [&](const std::string& s, const std::string& msg) {
+    output([&] { io::write_run_status(out, s, msg, method.step_count(), method.time(), info(s)); });
+  };
+  auto last_status = clock::now();
+  auto status_running = [&] {
+    status("running", "");
+    last_status = clock::now();
+  };
 
-  // ETA from the progress since this process started.
-  const double t_start = method.time();
-  auto last_report = clock::now();
-  while (method.time() < set.end_time - eps) {
-    const StepProblem problem = method.step();
-    const double t = method.time();
-    const bool last = t >= set.end_time - eps;
-    if (opt.log)
-      if (const std::string w = method.take_warning(); !w.empty()) opt.log(w);
-    // The checks: the energy's at every global.csv row, and at a step with a problem too; every
-    // one that trips is reported, the energy's first, then the step's problem.
-    const bool global_due = t >= ck.next_global_time - eps || last;
-    if (problem || global_due) {
-      const GlobalRow g = record_global();
-      if (global_due) ck.next_global_time += set.output.global_interval;
-      std::vector<std::string> tripped;
-      const double ref = std::max({sum.first_energy, std::fabs(g.external_work), 1e-300});
-      if (!std::isfinite(g.total_energy)) {
-        tripped.push_back("energy is not finite");
-      } else if (g.total_energy > set.energy_blowup_factor * ref && g.total_energy > 1e-12) {
-        std::ostringstream msg;
-        // Name the fastest point: where the blow-up is.
-        msg << "energy blow-up, total energy " << g.total_energy << " J exceeds " << set.energy_blowup_factor
-            << " x the reference " << ref << " J; fastest " << method.fastest_point();
-        tripped.push_back(msg.str());
+  try {
+    output([&] {
+      if (opt.resume) {
+        io::CsvSeries::truncate_after(csv_path, method.time());
+        io::CsvSeries::truncate_after(tips_path, method.time());
+      } else {
+        // A fresh run replaces the outputs of an earlier one in the same directory (of any method).
+        io::remove_run_outputs(out, any_series, run_files);
       }
-      if (problem) tripped.push_back(problem.what);
-      if (!tripped.empty()) {
-        std::string msg = at(t) + tripped[0];
-        for (std::size_t k = 1; k < tripped.size(); ++k) msg += "; also " + tripped[k];
-        abort_run(msg);
+    });
+    std::optional<io::CsvSeries> csv, tip_csv;
+    output([&] {
+      csv.emplace(csv_path, method.global_columns(), opt.resume);
+      if (tips) tip_csv.emplace(tips_path, tip_cols, opt.resume);
+    });
+    status_running();
+
+    const double eps = 1e-9 * set.dt;
+    auto write_frame = [&]() {
+      output([&] {
+        for (std::size_t k = 0; k < series.size(); ++k) {
+          const std::string name = io::frame_file_name(series[k], static_cast<int>(ck.next_frame));
+          io::write_vtu(out / name, method.frame(k), {.zlib = set.output.zlib, .float32 = set.output.float32});
+          pvd[k].add(method.time(), name);
+          pvd[k].write();
+        }
+      });
+      ++ck.next_frame;
+      ++sum.frames;
+    };
+    auto checkpoint = [&]() {
+      ck.scene_hash = opt.scene_hash;
+      output([&] { write_checkpoint<Dim>(ck_path, method, ck); });
+      ck_step = method.step_count();
+      ck_time = method.time();
+    };
+    auto record_global = [&]() {
+      const GlobalRow g = method.global_row();
+      output([&] { csv->row(g.values); });
+      sum.observe_energy(g.total_energy);
+      return g;
+    };
+    auto record_tips = [&]() {
+      const auto rows = method.tip_rows();
+      output([&] {
+        for (const auto& row : rows) tip_csv->row(row);
+      });
+    };
+    auto abort_run = [&](const std::string& msg) {
+      try {
+        write_frame();
+      } catch (const OutputFailure& e) {
+        throw OutputFailure(std::string(e.what()) + ", the state at a detected problem (" + msg + ")");
       }
-    }
-    if (tips && (t >= ck.next_tip_time - eps || last)) {
-      record_tips();
-      while (ck.next_tip_time <= t + eps) ck.next_tip_time += set.output.tip_interval;
-    }
-    if (t >= ck.next_frame_time - eps || last) {
-      write_frame();
-      ck.next_frame_time += set.output.interval;
+      status("aborted", msg);
+      throw RunAborted(msg);
+    };
+    // A stop on request: the step is done; its state goes to a checkpoint (not a frame, so the
+    // resumed run's files are those of an uninterrupted one) and run.json says how to go on.
+    auto stop_run = [&](int sig) {
       checkpoint();
+      std::ostringstream msg;
+      msg << "stopped by " << signal_name(sig) << " at step " << method.step_count() << ", time " << method.time()
+          << " s; resume with: " << resume_command;
+      status("stopped", msg.str());
+      throw RunStopped(sig, msg.str());
+    };
+    if (!opt.resume) {
+      record_global();
+      if (tips) record_tips();
+      write_frame();
+      ck.next_frame_time = set.output.interval;
+      ck.next_global_time = set.output.global_interval;
+      ck.next_tip_time = set.output.tip_interval;
+      checkpoint();
+      status_running();
     }
-    if (opt.progress && std::chrono::duration<double>(clock::now() - last_report).count() >= opt.progress_interval_s) {
-      last_report = clock::now();
-      RunProgress p;
-      p.step = method.step_count();
-      p.time = t;
-      p.end_time = set.end_time;
-      p.wall_s = std::chrono::duration<double>(last_report - t0).count();
-      const double frac = (t - t_start) / std::max(set.end_time - t_start, 1e-300);
-      p.eta_s = frac > 0 ? p.wall_s * (1.0 - frac) / frac : 0.0;
-      opt.progress(p);
+
+    auto last_report = clock::now();
+    while (method.time() < set.end_time - eps) {
+      if (const int sig = stop_requested()) stop_run(sig);
+      const StepProblem problem = method.step();
+      const double t = method.time();
+      const bool last = t >= set.end_time - eps;
+      if (opt.log)
+        if (const std::string w = method.take_warning(); !w.empty()) opt.log(w);
+      // The checks: the energy's at every global.csv row, and at a step with a problem too; every
+      // one that trips is reported, the energy's first, then the step's problem.
+      const bool global_due = t >= ck.next_global_time - eps || last;
+      if (problem || global_due) {
+        const GlobalRow g = record_global();
+        if (global_due) ck.next_global_time += set.output.global_interval;
+        std::vector<std::string> tripped;
+        const double ref = std::max({sum.first_energy, std::fabs(g.external_work), 1e-300});
+        if (!std::isfinite(g.total_energy)) {
+          tripped.push_back("energy is not finite");
+        } else if (g.total_energy > set.energy_blowup_factor * ref && g.total_energy > 1e-12) {
+          std::ostringstream msg;
+          // Name the fastest point: where the blow-up is.
+          msg << "energy blow-up, total energy " << g.total_energy << " J exceeds " << set.energy_blowup_factor
+              << " x the reference " << ref << " J; fastest " << method.fastest_point();
+          tripped.push_back(msg.str());
+        }
+        if (problem) tripped.push_back(problem.what);
+        if (!tripped.empty()) {
+          std::string msg = at_step(method.step_count(), t) + tripped[0];
+          for (std::size_t k = 1; k < tripped.size(); ++k) msg += "; also " + tripped[k];
+          abort_run(msg);
+        }
+      }
+      if (tips && (t >= ck.next_tip_time - eps || last)) {
+        record_tips();
+        while (ck.next_tip_time <= t + eps) ck.next_tip_time += set.output.tip_interval;
+      }
+      if (t >= ck.next_frame_time - eps || last) {
+        write_frame();
+        ck.next_frame_time += set.output.interval;
+        checkpoint();
+        if (!last) status_running();
+      } else if (std::chrono::duration<double>(clock::now() - last_status).count() >= opt.status_interval_s) {
+        status_running();  // so that run.json can be watched between frames
+      }
+      if (opt.progress && std::chrono::duration<double>(clock::now() - last_report).count() >= opt.progress_interval_s) {
+        last_report = clock::now();
+        opt.progress(progress_now());
+      }
     }
+    status("complete", "");
+  } catch (const OutputFailure& e) {
+    // Only temporaries of the failed writes go: the last complete frame and checkpoint stay, and
+    // run.json says why, even on a full disk (write_final_run_status).
+    io::remove_temporaries(out, any_series, run_files);
+    const std::string msg = at_step(method.step_count(), method.time()) + e.what();
+    const std::string also =
+        io::write_final_run_status(out, "aborted", msg, method.step_count(), method.time(), info("aborted"));
+    throw RunOutputFailed(also.empty() ? msg : msg + "; run.json could not be updated either: " + also);
   }
   sum.steps = method.step_count();
   sum.time = method.time();
   sum.wall_s = std::chrono::duration<double>(clock::now() - t0).count();
-  status("complete", "");
   return sum;
 }
 

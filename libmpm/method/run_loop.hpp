@@ -1,8 +1,11 @@
 // The one run loop, for every method: steps a Method to its end time and writes the frame series
 // (particles.pvd + VTU frames, and any other series the method has, such as cracks.pvd),
 // global.csv, crack_tips.csv when the method has a tip table, checkpoint.bin at every frame, and
-// run.json whose "status" says whether the output is complete, still running, or stopped by a
-// detected problem. `--resume` continues from the last checkpoint bit for bit.
+// run.json whose "status" says whether the output is complete, still running (updated about once
+// a second with step, time, frames and ETA), stopped on request (SIGINT/SIGTERM: a checkpoint at
+// that step, and the command that resumes), or aborted by a detected problem or a failed write.
+// `--resume` continues from the last checkpoint bit for bit. One run at a time per directory
+// (io/output_lock.hpp).
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -19,6 +22,7 @@ namespace cleave {
 struct RunProgress {
   long step = 0;
   double time = 0.0, end_time = 0.0, wall_s = 0.0, eta_s = 0.0;
+  long frames = 0;  // frames of the run written so far, resumed parts included
 };
 
 struct RunOptions {
@@ -27,13 +31,21 @@ struct RunOptions {
   std::function<void(const RunProgress&)> progress;  // called about every progress_interval_s
   std::function<void(const std::string&)> log;       // warnings found while stepping
   double progress_interval_s = 0.5;
+  double status_interval_s = 1.0;  // run.json while running: at every frame, else at most this often
   uint64_t scene_hash = 0;
+  // SIGINT/SIGTERM stop the run after its step with a checkpoint there (RunStopped), and SIGXFSZ
+  // is ignored (method/stop_signals.hpp), while the run goes.
+  bool handle_signals = true;
+  std::string command;         // the command line, named in run.lock for a refused second run
+  std::string resume_command;  // what run.json and the stop message tell the user to run
 };
 
 struct RunSummary {
-  long steps = 0;
+  long steps = 0;  // the step count at the end (a resumed run's steps before the resume included)
   double time = 0.0, wall_s = 0.0;
-  int frames = 0;
+  int frames = 0;  // frames written by this call
+  bool resumed = false;
+  long first_step = 0;  // the step this call started from (the checkpoint's when resumed)
   double max_energy_drift = 0.0;  // max |E - E0| / max(E0, max E) over global rows (no loads/damping)
 
   // Takes the total energy of one global row: E0 is the first, the drift is folded into
@@ -47,7 +59,9 @@ struct RunSummary {
   double first_energy = -1.0, largest_energy = 0.0;
 };
 
-// Throws RunAborted (after writing the last state) when a step detects a problem.
+// Throws RunAborted (after writing the last state) when a step detects a problem, RunOutputFailed
+// when an output cannot be written, RunStopped on SIGINT/SIGTERM, RunRefused when the run cannot
+// start (checkpoint missing or of another scene, method, dimension or format; directory locked).
 template <int Dim>
 RunSummary run_method(Method<Dim>& method, const RunOptions& opt);
 

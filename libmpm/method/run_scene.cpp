@@ -30,13 +30,15 @@ std::vector<std::string> SceneMethod::describe() const { return m2_ ? m2_->descr
 std::pair<double, std::string> SceneMethod::work_per_step() const {
   return m2_ ? m2_->work_per_step() : m3_->work_per_step();
 }
+RunEstimate SceneMethod::estimate() { return m2_ ? estimate_run<2>(*m2_) : estimate_run<3>(*m3_); }
 RunSummary SceneMethod::run(RunOptions opt) {
+  check_disk(estimate(), opt.out);
   opt.scene_hash = hash_;
   return m2_ ? run_method<2>(*m2_, opt) : run_method<3>(*m3_, opt);
 }
 
 RunSummary run_scene(nlohmann::json scene, const std::vector<std::string>& overrides, const RunOptions& opt) {
-  for (const auto& kv : overrides) apply_override(scene, kv);
+  apply_overrides(scene, overrides);
   return SceneMethod::build(scene).run(opt);
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "libmpm/method/method.hpp"
+#include "libmpm/method/run_estimate.hpp"
 #include "libmpm/method/run_loop.hpp"
 
 namespace cleave {
@@ -23,7 +24,10 @@ class SceneMethod {
   const RunSettings& settings() const;
   std::vector<std::string> describe() const;
   std::pair<double, std::string> work_per_step() const;
-  // Runs with the one run loop; opt.scene_hash is set to the scene's.
+  // Points, steps, memory and output of the run (method/run_estimate.hpp).
+  RunEstimate estimate();
+  // Runs with the one run loop; opt.scene_hash is set to the scene's. First refuses (SceneError,
+  // nothing written) a run whose output would not fit on opt.out's disk, unless --force.
   RunSummary run(RunOptions opt);
 
  private:
@@ -32,7 +36,7 @@ class SceneMethod {
   uint64_t hash_ = 0;
 };
 
-// Applies the overrides (KEY=VALUE, scene/scene.hpp), builds the scene's method and runs it.
+// Applies the overrides (KEY=VALUE, scene/scene.hpp: each key once), builds the scene's method and runs it.
 RunSummary run_scene(nlohmann::json scene, const std::vector<std::string>& overrides, const RunOptions& opt);
 
 }  // namespace cleave

@@ -17,7 +17,7 @@ inline constexpr bool kPlainValue = std::is_standard_layout_v<T> && !std::is_poi
 
 class StateWriter {
  public:
-  explicit StateWriter(std::ofstream& o) : o_(o) {}
+  explicit StateWriter(std::ostream& o) : o_(o) {}  // any stream: the run estimate counts the bytes
   template <class T>
   void value(const T& v) {
     static_assert(kPlainValue<T>);
@@ -32,7 +32,7 @@ class StateWriter {
   }
 
  private:
-  std::ofstream& o_;
+  std::ostream& o_;
 };
 
 class StateReader {

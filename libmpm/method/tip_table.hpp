@@ -1,12 +1,13 @@
-// crack_tips.csv, one schema for every method. The leading columns mean the same whatever wrote them:
-//   time   s    the row's time
-//   crack  -    which crack: an index into run.json's list (MPM: "cracks", the scene's cracks[];
-//               peridynamics: "crack_tip_trackers", the scene's peridynamics.crack_tips[])
-//   tip    -    which front of that crack (2D: 0 = its first point, 1 = its last; a tracker: 0)
-//   x, y[, z]  m  where the tip is now
-//   speed  m/s  |x - x_prev| / (t - t_prev) since the same tip's previous row (seed 003); 0 on its first
-// then the method's own quantities (MPM: J1, J2 in J/m^2, KI, KII in Pa m^1/2). A reader finds a
-// column by its header name.
+// crack_tips.csv, one schema for every method. The leading columns mean the same whatever wrote them
+// (each name ends in its SI unit, as in every CSV Cleave writes; counts and indices have none):
+//   time_s           the row's time
+//   crack            which crack: an index into run.json's list (MPM: "cracks", the scene's cracks[];
+//                    peridynamics: "crack_tip_trackers", the scene's peridynamics.crack_tips[])
+//   tip              which front of that crack (2D: 0 = its first point, 1 = its last; a tracker: 0)
+//   x_m, y_m[, z_m]  where the tip is now
+//   speed_m_per_s    |x - x_prev| / (t - t_prev) since the same tip's previous row (seed 003); 0 on its first
+// then the method's own quantities (MPM: J1_J_per_m2, J2_J_per_m2, KI_Pa_sqrt_m, KII_Pa_sqrt_m). A
+// reader finds a column by its header name.
 #pragma once
 #include <cmath>
 #include <string>
@@ -28,9 +29,9 @@ class TipTable {
         last_x_(cracks * fronts, Vec<Dim>::Constant(std::nan(""))), last_t_(cracks * fronts, -1.0) {}
 
   std::vector<std::string> columns() const {
-    std::vector<std::string> c = {"time", "crack", "tip", "x", "y"};
-    if (Dim == 3) c.push_back("z");
-    c.push_back("speed");
+    std::vector<std::string> c = {"time_s", "crack", "tip", "x_m", "y_m"};
+    if (Dim == 3) c.push_back("z_m");
+    c.push_back("speed_m_per_s");
     c.insert(c.end(), quantities_.begin(), quantities_.end());
     return c;
   }

@@ -79,9 +79,10 @@ class MpmMethod final : public Method<Dim> {
   }
 
   std::vector<std::string> global_columns() const override {
-    std::vector<std::string> c = {"time", "step", "kinetic_energy", "strain_energy", "external_work", "total_energy",
-                                  "momentum_x", "momentum_y"};
-    if (Dim == 3) c.push_back("momentum_z");
+    // Names carry their SI unit (docs/scenes.md, "Output files").
+    std::vector<std::string> c = {"time_s", "step", "kinetic_energy_J", "strain_energy_J", "external_work_J",
+                                  "total_energy_J", "momentum_x_kg_m_per_s", "momentum_y_kg_m_per_s"};
+    if (Dim == 3) c.push_back("momentum_z_kg_m_per_s");
     return c;
   }
   GlobalRow global_row() const override {
@@ -161,7 +162,8 @@ class MpmMethod final : public Method<Dim> {
   Model<Dim>& m_;
   std::unique_ptr<Stepper<Dim>> stepper_;
   std::vector<crack::TipRecord> tips_;
-  TipTable<Dim> table_{m_.cracks.size(), 2, {"J1", "J2", "KI", "KII"}};  // crack_tips.csv; 2D: two ends
+  TipTable<Dim> table_{m_.cracks.size(), 2,
+                       {"J1_J_per_m2", "J2_J_per_m2", "KI_Pa_sqrt_m", "KII_Pa_sqrt_m"}};  // crack_tips.csv; 2D: two ends
   long tips_step_ = -1;  // step of tips_; -1: none yet
 };
 

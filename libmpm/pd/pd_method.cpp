@@ -107,9 +107,11 @@ class PdMethod final : public Method<Dim> {
   }
 
   std::vector<std::string> global_columns() const override {
-    std::vector<std::string> c = {"time", "step", "kinetic_energy", "strain_energy", "external_work",
-                                  "damping_loss", "total_energy", "broken_bonds", "momentum_x", "momentum_y"};
-    if (Dim == 3) c.push_back("momentum_z");
+    // Names carry their SI unit (docs/scenes.md, "Output files").
+    std::vector<std::string> c = {"time_s", "step", "kinetic_energy_J", "strain_energy_J", "external_work_J",
+                                  "damping_loss_J", "total_energy_J", "broken_bonds", "momentum_x_kg_m_per_s",
+                                  "momentum_y_kg_m_per_s"};
+    if (Dim == 3) c.push_back("momentum_z_kg_m_per_s");
     return c;
   }
   GlobalRow global_row() const override {

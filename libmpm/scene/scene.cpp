@@ -1,8 +1,12 @@
 #include "libmpm/scene/scene.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
+#include <sstream>
 
 #include "libmpm/core/error.hpp"
+#include "libmpm/scene/json_text.hpp"
 #include "libmpm/scene/sections.hpp"
 
 namespace cleave {
@@ -10,13 +14,18 @@ namespace cleave {
 using nlohmann::json;
 
 json load_scene_file(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw SceneError(file.string(), "cannot open the scene file");
-  try {
-    return json::parse(in, nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
-    throw SceneError(file.string(), std::string("not valid JSON: ") + e.what());
-  }
+  // The reason names the file: an empty key path tells the CLI to print the reason alone.
+  const std::string name = file.string();
+  std::error_code ec;
+  const auto st = std::filesystem::status(file, ec);
+  if (!std::filesystem::exists(st)) throw SceneError("", "cannot open " + name + ": no such file");
+  if (std::filesystem::is_directory(st)) throw SceneError("", "cannot open " + name + ": is a directory");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw SceneError("", "cannot open " + name + ": " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw SceneError("", "cannot read " + name + ": " + std::strerror(errno));
+  return scene::parse_scene_text(text.str());
 }
 
 int scene_dimension(const json& scene) {
@@ -35,8 +44,14 @@ void apply_override(json& scene, const std::string& kv) {
   const auto eq = kv.find('=');
   if (eq == std::string::npos || eq == 0) throw SceneError(kv, "--set needs KEY=VALUE");
   const std::string key = kv.substr(0, eq), text = kv.substr(eq + 1);
-  json value = json::parse(text, nullptr, false);
-  if (value.is_discarded()) value = text;  // a bare word such as USL
+  json value;
+  try {
+    value = json::parse(text);
+  } catch (const json::out_of_range& e) {  // 1e400: a number, but beyond a double's range
+    throw SceneError(key, "--set value " + text + " is out of range (a double holds at most 1.8e308)");
+  } catch (const json::exception&) {
+    value = text;  // a bare word such as USL
+  }
   json* node = &scene;
   std::size_t i = 0;
   while (i < key.size()) {
@@ -61,6 +76,21 @@ void apply_override(json& scene, const std::string& kv) {
     }
   }
   *node = value;
+}
+
+void apply_overrides(json& scene, const std::vector<std::string>& key_values) {
+  // A later --set of the same key (or of a key above it) would replace an earlier one without a word.
+  auto key_of = [](const std::string& kv) { return kv.substr(0, kv.find('=')); };
+  for (std::size_t i = 0; i < key_values.size(); ++i)
+    for (std::size_t j = i + 1; j < key_values.size(); ++j) {
+      const std::string a = key_of(key_values[i]), b = key_of(key_values[j]);
+      const bool covers = a.rfind(b, 0) == 0 && (a.size() == b.size() || a[b.size()] == '.' || a[b.size()] == '[');
+      if (!b.empty() && covers)
+        throw SceneError(a, "--set twice: '--set " + key_values[i] + "' (option " + std::to_string(i + 1) +
+                                ") would be overridden by '--set " + key_values[j] + "' (option " +
+                                std::to_string(j + 1) + "); give each key once");
+    }
+  for (const auto& kv : key_values) apply_override(scene, kv);
 }
 
 }  // namespace cleave

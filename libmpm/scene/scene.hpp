@@ -5,10 +5,13 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace cleave {
 
-// Reads and parses the file; SceneError names the file on a missing file or a JSON syntax error.
+// Reads and parses the file strictly (scene/json_text.hpp: duplicate keys, numbers out of range,
+// syntax errors name the key, line and column). A file that cannot be opened (missing, a directory,
+// unreadable) is a SceneError with an empty key path whose reason names the file.
 nlohmann::json load_scene_file(const std::filesystem::path& file);
 
 // 2 or 3, from "analysis.type".
@@ -21,5 +24,9 @@ std::string scene_method(const nlohmann::json& scene);
 // Applies one KEY=VALUE override; the key path uses '.' and [i] like error messages
 // (mpm.stress_update, bodies[1].velocity); VALUE is JSON or else a plain string.
 void apply_override(nlohmann::json& scene, const std::string& key_value);
+
+// Applies every override in order; SceneError when one key is set twice (or a key and a key inside
+// it, as time and time.end): the earlier one would be lost without a word.
+void apply_overrides(nlohmann::json& scene, const std::vector<std::string>& key_values);
 
 }  // namespace cleave

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "libmpm/scene/budget.hpp"
+
 namespace cleave::scene {
 
 using nlohmann::json;
@@ -69,6 +71,7 @@ void read_time(const json& scene, const UnitSystem& units, double stable_dt, con
     if (cfl > 1.0) throw SceneError("time.cfl", "must be at most 1 (got " + fmt(cfl) + ")");
     s.dt = cfl * stable_dt;
   }
+  check_step_count(s);  // scene/budget.hpp: before anything is built or written
 }
 
 void read_checks(const json& scene, RunSettings& s) {

@@ -29,7 +29,8 @@ void read_time(const nlohmann::json& scene, const UnitSystem& units, double stab
                const std::string& no_limit_reason, RunSettings& s);
 
 // "output": interval (default end / 100), global_interval (interval / 10), tip_interval (rows of
-// crack_tips.csv, every method; global_interval), fields (each one of `valid`; all by default).
+// crack_tips.csv, every method; global_interval), fields (each one of `valid`; all by default),
+// compression ("none" or "zlib") and precision ("float64" or "float32") of the frames.
 // `qualifier` is added to the unknown-field message (" for peridynamics"). `has_tips`: the scene
 // asks for a crack-tip table; output.tip_interval without one is an error.
 template <class Names>
@@ -69,7 +70,8 @@ void read_output(const nlohmann::json& scene, const UnitSystem& units, const Nam
   o.global_interval = o.interval / 10;
   o.tip_interval = o.global_interval;
   if (!scene.contains("output") || scene["output"].is_null()) return;
-  ObjectReader r(scene["output"], "output", {"interval", "global_interval", "tip_interval", "fields"});
+  ObjectReader r(scene["output"], "output",
+                 {"interval", "global_interval", "tip_interval", "fields", "compression", "precision"});
   if (r.has("tip_interval") && !has_tips)
     throw SceneError(r.at("tip_interval"), "the scene asks for no crack-tip table (MPM: \"crack_tips\"; "
                                            "peridynamics: \"peridynamics.crack_tips\")");
@@ -77,6 +79,15 @@ void read_output(const nlohmann::json& scene, const UnitSystem& units, const Nam
   if (r.has("fields")) o.fields = read_field_names(r["fields"], valid, qualifier);
   o.global_interval = r.positive_or("global_interval", o.interval / 10, T);
   o.tip_interval = r.positive_or("tip_interval", o.global_interval, T);
+  // How frames are encoded (io/vtu_writer.hpp). The defaults keep raw Float64: exact, and the
+  // fastest to write (docs/performance.md, "Output formats").
+  const std::string comp = r.string_or("compression", "none"), prec = r.string_or("precision", "float64");
+  if (comp != "none" && comp != "zlib")
+    throw SceneError(r.at("compression"), "unknown compression '" + comp + "'; valid: none, zlib");
+  if (prec != "float64" && prec != "float32")
+    throw SceneError(r.at("precision"), "unknown precision '" + prec + "'; valid: float64, float32");
+  o.zlib = comp == "zlib";
+  o.float32 = prec == "float32";
 }
 
 template <int Dim>

@@ -1,7 +1,9 @@
 #include "viz/job/render_job.hpp"
 
 #include <vtkCellArray.h>
+#include <vtkCellType.h>
 #include <vtkDataArray.h>
+#include <vtkIdList.h>
 #include <vtkPointData.h>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
@@ -19,89 +21,15 @@
 #include <stdexcept>
 
 #include "libmpm/io/pvd_writer.hpp"
+#include "viz/job/colour_scale.hpp"
+#include "viz/job/movie.hpp"
 #include "viz/optics/colormap.hpp"
+#include "viz/raster/smooth.hpp"
 
 namespace cleave::viz {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::array<uint8_t, 3> to_rgb8(const std::array<double, 3>& c) {
-  std::array<uint8_t, 3> r;
-  for (int k = 0; k < 3; ++k) r[k] = static_cast<uint8_t>(std::lround(std::clamp(c[k], 0.0, 1.0) * 255.0));
-  return r;
-}
-
-std::string format_time(double t) {
-  char b[64];
-  if (std::fabs(t) < 1e-3) std::snprintf(b, sizeof b, "t = %.2f us", t * 1e6);
-  else if (std::fabs(t) < 1.0) std::snprintf(b, sizeof b, "t = %.4f ms", t * 1e3);
-  else std::snprintf(b, sizeof b, "t = %.4f s", t);
-  return b;
-}
-
-// Units shown on the colour bar for the fields Cleave writes.
-std::string field_units(const std::string& f) {
-  static const char* stress[] = {"sxx", "syy", "szz", "sxy", "von_mises", "principal_stress_difference", "s1-s2"};
-  for (const char* s : stress)
-    if (f == s || f.rfind("stress", 0) == 0) return "MPa";
-  if (f[0] == 'u' || f.rfind("displacement", 0) == 0 || f == "|u|") return "mm";
-  if (f[0] == 'v' || f.rfind("velocity", 0) == 0 || f == "|v|") return "m/s";
-  return "";
-}
-// Display scale matching field_units (SI inside, engineering units on screen).
-double field_scale(const std::string& units) { return units == "MPa" ? 1e-6 : units == "mm" ? 1e3 : 1.0; }
-
-// Maps a field's values (SI) to colours: display units, automatic range (symmetric about zero with
-// a diverging map for signed fields) or the fixed --range, log scale, colour map; fills the bar.
-class ColourScale {
- public:
-  ColourScale(const RenderOptions& o, const std::vector<double>& values, ColorBar& bar) : log_(o.log_scale) {
-    const std::string units = field_units(o.field);
-    scale_ = field_scale(units);
-    // Automatic range: the 0.5 % and 99.5 % quantiles, so that a few singular particles (load points,
-    // supports, crack tips) do not wash out the rest of the image; --range overrides.
-    std::vector<double> v;
-    v.reserve(values.size());
-    for (double x : values)
-      if (std::isfinite(x)) v.push_back(x * scale_);
-    lo_ = 0, hi_ = 1;
-    if (!v.empty()) {
-      const std::size_t a = std::size_t(0.005 * (v.size() - 1)), b = std::size_t(0.995 * (v.size() - 1));
-      std::nth_element(v.begin(), v.begin() + a, v.end());
-      lo_ = v[a];
-      std::nth_element(v.begin(), v.begin() + b, v.end());
-      hi_ = v[b];
-    }
-    const bool is_signed = lo_ < 0 && hi_ > 0;
-    if (o.range) lo_ = (*o.range)[0], hi_ = (*o.range)[1];
-    else if (is_signed) lo_ = -std::max(-lo_, hi_), hi_ = -lo_;
-    if (log_) {
-      if (hi_ <= 0) throw std::invalid_argument("--log needs positive values of " + o.field);
-      if (lo_ <= 0) lo_ = hi_ * 1e-4;
-    }
-    if (hi_ == lo_) hi_ = lo_ + (lo_ == 0 ? 1.0 : std::fabs(lo_) * 1e-6);
-    const std::string name = o.colormap.empty() ? (is_signed && !log_ ? "coolwarm" : "viridis") : o.colormap;
-    const auto cm = colormap_from_name(name);
-    if (!cm) throw std::invalid_argument("unknown colour map '" + name + "'; valid: viridis, cividis, coolwarm, gray");
-    map_ = *cm;
-    bar.show = o.colorbar;
-    bar.min = lo_, bar.max = hi_, bar.log = log_;
-    bar.title = o.field + (units.empty() ? "" : " (" + units + ")");
-    bar.table = colormap_table(map_, 256);
-  }
-  std::array<uint8_t, 3> operator()(double v_si) const {
-    const double v = v_si * scale_;
-    const double t = log_ ? (std::log10(std::max(v, lo_)) - std::log10(lo_)) / (std::log10(hi_) - std::log10(lo_))
-                          : (v - lo_) / (hi_ - lo_);
-    return to_rgb8(colormap(map_, std::clamp(t, 0.0, 1.0)));
-  }
-
- private:
-  bool log_;
-  double scale_ = 1, lo_ = 0, hi_ = 1;
-  ColorMapKind map_ = ColorMapKind::Viridis;
-};
 
 // The frame of OUT/cracks.pvd nearest to time t; null when the run has no crack series.
 struct CrackFrame {
@@ -127,19 +55,43 @@ CrackFrame nearest_crack_frame(const fs::path& dir, double t) {
   return cf;
 }
 
-// The crack polylines of the crack frame nearest to time t (none when the series has no cracks).
+// The 2D crack paths of a crack frame, as point ids in order along each crack. Cracks are written
+// as VTK_LINE segments in path order (meshio reads no poly-lines), so a segment that starts where
+// the previous one ended continues its path; a VTK_POLY_LINE cell (files of Cleave before issue 15)
+// is a whole path, a vertex a one-point crack. Other cells (3D crack triangles) are no paths.
+std::vector<std::vector<vtkIdType>> crack_paths(vtkUnstructuredGrid* g) {
+  std::vector<std::vector<vtkIdType>> paths;
+  bool open = false;  // the last path may go on with a segment
+  for (vtkIdType c = 0; c < g->GetNumberOfCells(); ++c) {
+    const int type = g->GetCellType(c);
+    if (type != VTK_LINE && type != VTK_POLY_LINE && type != VTK_VERTEX) {
+      open = false;
+      continue;
+    }
+    vtkNew<vtkIdList> ids;
+    g->GetCellPoints(c, ids);
+    if (ids->GetNumberOfIds() == 0) continue;
+    vtkIdType k = 0;
+    if (type == VTK_LINE && open && paths.back().back() == ids->GetId(0)) k = 1;  // continues the path
+    else paths.emplace_back();
+    for (; k < ids->GetNumberOfIds(); ++k) paths.back().push_back(ids->GetId(k));
+    open = type == VTK_LINE;
+  }
+  return paths;
+}
+
+// The crack paths of the crack frame nearest to time t (none when the series has no cracks).
 std::vector<Polyline2D> crack_overlays(const fs::path& dir, double t) {
   std::vector<Polyline2D> out;
   const CrackFrame cf = nearest_crack_frame(dir, t);
   if (!cf.grid) return out;
   vtkUnstructuredGrid* g = cf.grid;
-  for (vtkIdType c = 0; c < g->GetNumberOfCells(); ++c) {
-    vtkCell* cell = g->GetCell(c);
+  for (const auto& path : crack_paths(g)) {
     Polyline2D pl;
     pl.colour = {0.9, 0.1, 0.1};
-    for (vtkIdType k = 0; k < cell->GetNumberOfPoints(); ++k) {
+    for (vtkIdType id : path) {
       double x[3];
-      g->GetPoint(cell->GetPointId(k), x);
+      g->GetPoint(id, x);
       pl.points.push_back({x[0], x[1]});
     }
     out.push_back(std::move(pl));
@@ -149,9 +101,16 @@ std::vector<Polyline2D> crack_overlays(const fs::path& dir, double t) {
 
 fs::path series_dir(const fs::path& p) { return fs::is_directory(p) ? p : p.parent_path(); }
 
+// Space around the bodies, of the box's larger side: a figure's tight frame, or the room an image of
+// a given size has anyway.
+constexpr double kTightMargin = 0.015, kMargin = 0.03;
+
 }  // namespace
 
-Raster stress_raster(const ParticleFrame& f, const View& v) {
+Raster stress_raster(const ParticleFrame& f, const View& v, const RasterOptions& ro) {
+  // A section of a 3D frame carries its in-plane stress (cut_plane); a 2D frame its own xx, yy, xy.
+  if (const auto uv = f.arrays.find("stress_uv"); uv != f.arrays.end() && uv->second.components == 3)
+    return rasterize_2d(f, v, uv->second.values, 3, ro);
   const auto it = f.arrays.find("stress");
   if (it == f.arrays.end() || it->second.components != 6)
     throw std::invalid_argument(f.file + ": no 6-component 'stress' array: fringes need stresses (output.fields)");
@@ -162,10 +121,41 @@ Raster stress_raster(const ParticleFrame& f, const View& v) {
     per[3 * p + 1] = s[6 * p + 1];
     per[3 * p + 2] = s[6 * p + 3];
   }
-  return rasterize_2d(f, v, per, 3);
+  return rasterize_2d(f, v, per, 3, ro);
 }
 
-Image field_image(const ParticleFrame& f, const View& v, const RenderOptions& o, ColorBar& bar) {
+ParticleFrame drawn_frame(const ParticleFrame& f, const RenderOptions& o) {
+  if (!(o.smooth > 0) || f.dim != 2) return f;
+  SmoothSettings s;
+  s.sigma = o.smooth;
+  // Crack paths are barriers: the stress is not averaged from one face of a crack to the other.
+  if (!o.series.empty())
+    for (const Polyline2D& pl : crack_overlays(series_dir(o.series), f.time))
+      for (std::size_t i = 0; i + 1 < pl.points.size(); ++i)
+        s.barriers.push_back({pl.points[i][0], pl.points[i][1], pl.points[i + 1][0], pl.points[i + 1][1]});
+  return smooth_stress(f, s);
+}
+
+namespace {
+// The bodies' outline over a field image: dark grey (light grey on a dark background), about 1.5
+// pixels wide and more on large images, antialiased from the signed edge distance of the raster.
+void draw_outline(Image& img, const Raster& r, const std::array<double, 3>& background) {
+  if (r.edge.empty()) return;
+  const double lum = 0.299 * background[0] + 0.587 * background[1] + 0.114 * background[2];
+  const double ink = lum > 0.5 ? 0.2 * 255 : 0.8 * 255;
+  const double half = 0.5 * std::max(1.5, img.width / 1000.0);
+  for (std::size_t i = 0; i < r.edge.size(); ++i) {
+    const double a = std::clamp(half + 0.5 - std::fabs(double(r.edge[i])), 0.0, 1.0);
+    if (a <= 0) continue;
+    for (int c = 0; c < 3; ++c) img.rgb[3 * i + c] = uint8_t(std::lround((1 - a) * img.rgb[3 * i + c] + a * ink));
+  }
+}
+}  // namespace
+
+Image field_image(const ParticleFrame& frame, const View& v, const RenderOptions& o, ColorBar& bar) {
+  const ParticleFrame f = drawn_frame(frame, o);
+  RasterOptions ro;
+  ro.smooth_outline = o.outline;
   Image img;
   img.width = v.width;
   img.height = v.height;
@@ -173,7 +163,7 @@ Image field_image(const ParticleFrame& f, const View& v, const RenderOptions& o,
   const auto bg = to_rgb8(o.background);
   const std::size_t npix = std::size_t(v.width) * v.height;
   if (o.fringes) {
-    const Raster r = stress_raster(f, v);
+    const Raster r = stress_raster(f, v, ro);
     bar.show = false;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < npix; ++i) {
@@ -189,10 +179,11 @@ Image field_image(const ParticleFrame& f, const View& v, const RenderOptions& o,
       }
       std::copy(c.begin(), c.end(), &img.rgb[3 * i]);
     }
+    draw_outline(img, r, o.background);
     return img;
   }
   const std::vector<double> per = scalar_field(f, o.field);
-  const Raster r = rasterize_2d(f, v, per, 1);
+  const Raster r = rasterize_2d(f, v, per, 1, ro);
   std::vector<double> shown;
   for (std::size_t i = 0; i < npix; ++i)
     if (r.covered[i]) shown.push_back(r.values[i]);
@@ -202,7 +193,14 @@ Image field_image(const ParticleFrame& f, const View& v, const RenderOptions& o,
     const std::array<uint8_t, 3> c = r.covered[i] ? cs(r.values[i]) : bg;
     std::copy(c.begin(), c.end(), &img.rgb[3 * i]);
   }
+  draw_outline(img, r, o.background);
   return img;
+}
+
+std::string frame_file_name(const std::string& prefix, std::size_t index) {
+  char name[256];
+  std::snprintf(name, sizeof name, "%s_%06zu.png", prefix.c_str(), index);
+  return name;
 }
 
 RenderResult render_series(const RenderOptions& o, const std::function<void(std::size_t, std::size_t)>& progress) {
@@ -217,6 +215,7 @@ RenderResult render_series(const RenderOptions& o, const std::function<void(std:
   std::string prefix = o.fringes ? (o.photo.white_light ? "fringes_white" : "fringes") : o.field;
   for (char& c : prefix)  // a file name: "|v|" -> "_v_", "stress:1" -> "stress_1"
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') c = '_';
+  std::optional<std::array<int, 2>> canvas;  // image size of the 2D frames
   for (std::size_t k = 0; k < sel.size(); ++k) {
     const auto& e = entries[sel[k]];
     ParticleFrame f = read_particle_frame(e.file, e.time);
@@ -255,154 +254,33 @@ RenderResult render_series(const RenderOptions& o, const std::function<void(std:
       fr.time_stamp = stamp;
       fr.background = o.background;
       fr.colorbar.show = o.colorbar && !o.fringes;
-      // The field viewport depends on the window's aspect ratio: fit once to the whole image, ask the
-      // layout for the field's rectangle, and fit again to exactly that many pixels.
-      const View v0 = fit_view(f, o.width, o.height, o.roi, o.zoom);
-      fr.x0 = v0.x0, fr.y0 = v0.y0, fr.x1 = v0.x1, fr.y1 = v0.y1;
-      const PixelRect rect = frame_2d_field_viewport(o.width, o.height, fr);
-      const View v = fit_view(f, std::max(1, rect.width), std::max(1, rect.height), o.roi, o.zoom);
+      fr.scale_bar = o.scale_bar;
+      // Lettering for the size asked for, also when the image is cropped to the bodies; a wide strip
+      // of an image (1280 x 400) gets letters for its width, not only its few rows.
+      fr.text_size = std::max(o.height, int(0.45 * o.width));
+      const double margin = o.tight ? kTightMargin : kMargin;
+      // The layout gives the largest rectangle of the bodies' aspect ratio beside the bands; the view
+      // is then fitted to exactly that many pixels.
+      const auto box = bodies_box(f, o.roi, margin);
+      fr.x0 = box[0], fr.y0 = box[1], fr.x1 = box[2], fr.y1 = box[3];
+      if (!canvas) {  // the first frame sizes the image; the others are fitted into it, as a movie needs
+        canvas = o.tight ? frame_2d_tight_size(o.width, o.height, fr) : std::array<int, 2>{o.width, o.height};
+        ctx.resize((*canvas)[0], (*canvas)[1]);
+      }
+      const int W = (*canvas)[0], H = (*canvas)[1];
+      const PixelRect rect = frame_2d_field_viewport(W, H, fr);
+      const View v = fit_view(f, std::max(1, rect.width), std::max(1, rect.height), o.roi, o.zoom, margin);
       fr.field = field_image(f, v, o, fr.colorbar);
       fr.x0 = v.x0, fr.y0 = v.y0, fr.x1 = v.x1, fr.y1 = v.y1;
       if (!o.cut_plane) fr.overlays = crack_overlays(dir, e.time);
       out = render_frame_2d(ctx, fr);
     }
-    char name[256];
-    std::snprintf(name, sizeof name, "%s_%06zu.png", prefix.c_str(), k);
-    const fs::path file = images / name;
+    const fs::path file = images / frame_file_name(prefix, sel[k]);
     write_png(file, out);
     res.images.push_back(file);
     if (progress) progress(k + 1, sel.size());
   }
-  if (o.movie) {
-    if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0)
-      throw std::runtime_error("--movie needs Debian's ffmpeg (apt-get install ffmpeg; the README's set-up command installs it)");
-    fs::path movie = *o.movie;
-    if (movie.is_relative() && movie.parent_path().empty()) movie = images / movie;
-    std::ostringstream cmd;
-    cmd << "ffmpeg -loglevel error -y -framerate " << o.fps << " -i '" << (images / (prefix + "_%06d.png")).string()
-        << "' -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -c:v libx264 -pix_fmt yuv420p '" << movie.string() << "'";
-    if (std::system(cmd.str().c_str()) != 0) throw std::runtime_error("ffmpeg failed to encode " + movie.string());
-    res.movie = movie;
-  }
-  return res;
-}
-
-std::vector<std::array<double, 3>> read_fringe_points(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(file.string() + ": cannot open the points file");
-  std::vector<std::array<double, 3>> pts;
-  std::string line;
-  int n = 0;
-  while (std::getline(in, line)) {
-    ++n;
-    const auto hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
-    for (char& c : line)
-      if (c == ',') c = ' ';
-    std::istringstream ss(line);
-    std::array<double, 3> p;
-    if (!(ss >> p[0])) continue;  // blank line
-    if (!(ss >> p[1] >> p[2]))
-      throw std::runtime_error(file.string() + ":" + std::to_string(n) + ": expected 'x y N' (three numbers)");
-    pts.push_back(p);
-  }
-  if (pts.empty()) throw std::runtime_error(file.string() + ": no points");
-  return pts;
-}
-
-double fringe_order_rms(const ParticleFrame& f, const PhotoelasticSettings& s, const std::vector<std::array<double, 3>>& pts,
-                        std::size_t* used) {
-  // One raster over the points' bounding box, fine enough that a pixel is well below a particle.
-  double x0 = pts[0][0], x1 = x0, y0 = pts[0][1], y1 = y0;
-  for (const auto& p : pts) x0 = std::min(x0, p[0]), x1 = std::max(x1, p[0]), y0 = std::min(y0, p[1]), y1 = std::max(y1, p[1]);
-  const double pad = 1e-6 + 0.01 * std::max(x1 - x0, y1 - y0);
-  x0 -= pad, x1 += pad, y0 -= pad, y1 += pad;
-  const int n = 1024;
-  const double w = x1 - x0, h = y1 - y0;
-  View v{x0, y0, x1, y1, w >= h ? n : std::max(1, int(n * w / h)), h >= w ? n : std::max(1, int(n * h / w))};
-  const Raster r = stress_raster(f, v);
-  double sum = 0;
-  std::size_t k = 0;
-  for (const auto& p : pts) {
-    const int i = std::clamp(int((p[0] - v.x0) / (v.x1 - v.x0) * v.width), 0, v.width - 1);
-    const int j = std::clamp(int((v.y1 - p[1]) / (v.y1 - v.y0) * v.height), 0, v.height - 1);
-    const std::size_t q = std::size_t(j) * v.width + i;
-    if (!r.covered[q]) continue;
-    const double N = fringe_order(r.values[3 * q], r.values[3 * q + 1], r.values[3 * q + 2], s);
-    sum += (N - p[2]) * (N - p[2]);
-    ++k;
-  }
-  if (used) *used = k;
-  if (!k) throw std::runtime_error("no digitised point lies on the body");
-  return std::sqrt(sum / k);
-}
-
-CompareResult compare_with_photo(const RenderOptions& o, const fs::path& photo_file, const PhotoMap& map,
-                                 const std::optional<std::vector<std::array<double, 3>>>& points,
-                                 const fs::path& out_prefix) {
-  const Image photo = read_image(photo_file);
-  const auto entries = read_series(o.series);
-  const auto sel = select_frames(entries, o.frames);
-  if (sel.size() != 1) throw std::invalid_argument("compare needs exactly one frame (--frame time:T, last, index:I)");
-  const auto& e = entries[sel[0]];
-  const ParticleFrame f = read_particle_frame(e.file, e.time);
-  // Model position of each photo pixel centre.
-  const double ca = std::cos(map.angle), sa = std::sin(map.angle);
-  auto model_of = [&](double u, double v) {
-    const double dx = (u + 0.5) * map.scale, dy = -(v + 0.5) * map.scale;
-    return std::array<double, 2>{map.x0 + ca * dx - sa * dy, map.y0 + sa * dx + ca * dy};
-  };
-  double bx0 = 1e300, bx1 = -1e300, by0 = 1e300, by1 = -1e300;
-  for (double u : {0.0, double(photo.width)})
-    for (double v : {0.0, double(photo.height)}) {
-      const auto p = model_of(u - 0.5, v - 0.5);
-      bx0 = std::min(bx0, p[0]), bx1 = std::max(bx1, p[0]), by0 = std::min(by0, p[1]), by1 = std::max(by1, p[1]);
-    }
-  // Render the model over the photo's footprint at the photo's resolution, then sample per photo pixel.
-  const int W = std::max(1, int(std::ceil((bx1 - bx0) / map.scale))), H = std::max(1, int(std::ceil((by1 - by0) / map.scale)));
-  View v{bx0, by0, bx1, by1, W, H};
-  ColorBar bar;
-  const Image model = field_image(f, v, o, bar);
-  const Raster cov = rasterize_2d(f, v, std::vector<double>(f.x.size(), 1.0), 1);
-  Image aligned{photo.width, photo.height, std::vector<uint8_t>(photo.rgb.size(), 0)};
-  std::vector<uint8_t> mask(std::size_t(photo.width) * photo.height, 0);
-  for (int j = 0; j < photo.height; ++j)
-    for (int i = 0; i < photo.width; ++i) {
-      const auto p = model_of(i, j);
-      const int mi = int((p[0] - v.x0) / (v.x1 - v.x0) * v.width), mj = int((v.y1 - p[1]) / (v.y1 - v.y0) * v.height);
-      if (mi < 0 || mj < 0 || mi >= v.width || mj >= v.height) continue;
-      const std::size_t q = std::size_t(mj) * v.width + mi, t = std::size_t(j) * photo.width + i;
-      if (!cov.covered[q]) continue;
-      mask[t] = 1;
-      std::copy_n(&model.rgb[3 * q], 3, &aligned.rgb[3 * t]);
-    }
-  CompareResult res;
-  double sa_ = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
-  for (std::size_t t = 0; t < mask.size(); ++t) {
-    if (!mask[t]) continue;
-    auto lum = [](const uint8_t* c) { return (0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]) / 255.0; };
-    const double a = lum(&aligned.rgb[3 * t]), b = lum(&photo.rgb[3 * t]);
-    sa_ += a, sb += b, saa += a * a, sbb += b * b, sab += a * b;
-    ++res.pixels;
-  }
-  if (!res.pixels) throw std::runtime_error("the mapped photo does not overlap the body: check --map");
-  const double n = double(res.pixels);
-  const double cov_ab = sab / n - sa_ / n * sb / n, va = saa / n - sa_ * sa_ / n / n, vb = sbb / n - sb * sb / n / n;
-  res.ncc = va > 0 && vb > 0 ? cov_ab / std::sqrt(va * vb) : 0.0;
-  // Side by side and overlay images.
-  Image side{2 * photo.width, photo.height, std::vector<uint8_t>(6 * std::size_t(photo.width) * photo.height)};
-  Image over = photo;
-  for (int j = 0; j < photo.height; ++j)
-    for (int i = 0; i < photo.width; ++i) {
-      const std::size_t t = std::size_t(j) * photo.width + i;
-      std::copy_n(&photo.rgb[3 * t], 3, &side.rgb[3 * (std::size_t(j) * side.width + i)]);
-      std::copy_n(&aligned.rgb[3 * t], 3, &side.rgb[3 * (std::size_t(j) * side.width + photo.width + i)]);
-      if (mask[t])
-        for (int c = 0; c < 3; ++c) over.rgb[3 * t + c] = uint8_t((int(photo.rgb[3 * t + c]) + aligned.rgb[3 * t + c]) / 2);
-    }
-  write_png(out_prefix.string() + "_side_by_side.png", side);
-  write_png(out_prefix.string() + "_overlay.png", over);
-  if (points) res.fringe_rms = fringe_order_rms(f, o.photo, *points, &res.points_used);
+  if (o.movie) res.movie = encode_movie(res.images, images, *o.movie, o.fps);
   return res;
 }
 
@@ -424,16 +302,24 @@ std::vector<fs::path> render_plots(const fs::path& dir, const fs::path& images, 
     }
     return rows;
   };
+  // A column by its name with its unit (docs/scenes.md: "kinetic_energy_J"), or by the bare name
+  // that Cleave wrote before the CSV columns carried units, so older runs still plot; h.size() if
+  // absent. The first column is the time in s either way.
+  auto column = [](const std::vector<std::string>& h, const std::string& name, const std::string& unit) {
+    auto it = std::find(h.begin(), h.end(), name + "_" + unit);
+    if (it == h.end()) it = std::find(h.begin(), h.end(), name);
+    return int(it - h.begin());
+  };
   HeadlessContext ctx(width, height);
   if (fs::exists(dir / "global.csv")) {
     std::vector<std::string> h;
     const auto rows = read_csv(dir / "global.csv", h);
     std::vector<PlotSeries> series;
     for (const char* name : {"kinetic_energy", "strain_energy", "total_energy", "external_work"}) {
-      const auto it = std::find(h.begin(), h.end(), name);
-      if (it == h.end()) continue;
+      const int c = column(h, name, "J");
+      if (c >= int(h.size())) continue;
       PlotSeries s{name, {}, {}};
-      for (const auto& r : rows) s.x.push_back(r[0] * 1e3), s.y.push_back(r[it - h.begin()]);
+      for (const auto& r : rows) s.x.push_back(r[0] * 1e3), s.y.push_back(r[c]);
       series.push_back(std::move(s));
     }
     if (!series.empty()) {
@@ -448,7 +334,7 @@ std::vector<fs::path> render_plots(const fs::path& dir, const fs::path& images, 
     auto col = [&](const char* n) { return int(std::find(h.begin(), h.end(), n) - h.begin()); };
     const int ct = col("crack"), tp = col("tip");
     for (const char* q : {"J1", "KI"}) {
-      const int c = col(q);
+      const int c = column(h, q, q[0] == 'K' ? "Pa_sqrt_m" : "J_per_m2");
       if (c >= int(h.size()) || ct >= int(h.size()) || tp >= int(h.size())) continue;
       std::map<std::pair<int, int>, PlotSeries> by_tip;
       for (const auto& r : rows) {
@@ -457,7 +343,7 @@ std::vector<fs::path> render_plots(const fs::path& dir, const fs::path& images, 
         s.x.push_back(r[0] * 1e3);
         s.y.push_back(q[0] == 'K' ? r[c] * 1e-6 : r[c]);
         if (q[0] == 'K') {
-          const int c2 = col("KII");
+          const int c2 = column(h, "KII", "Pa_sqrt_m");
           if (c2 < int(h.size())) {
             auto& s2 = by_tip[{int(r[ct]), int(r[tp]) + 1000}];
             s2.name = "KII crack " + std::to_string(int(r[ct])) + " tip " + std::to_string(int(r[tp]));
@@ -487,12 +373,12 @@ fs::path render_cod_profile(const fs::path& dir, const fs::path& images, double 
   vtkDataArray* ct = g->GetPointData()->GetArray("cod_tangential");
   if (!cn || !ct) throw std::runtime_error(file.string() + ": no cod_normal / cod_tangential point data");
   std::vector<PlotSeries> series;
-  for (vtkIdType c = 0; c < g->GetNumberOfCells(); ++c) {
-    vtkCell* cell = g->GetCell(c);
+  const auto paths = crack_paths(g);
+  for (std::size_t c = 0; c < paths.size(); ++c) {
     PlotSeries n{"normal COD, crack " + std::to_string(c), {}, {}}, t{"tangential COD, crack " + std::to_string(c), {}, {}};
     double along = 0, prev[3] = {0, 0, 0};
-    for (vtkIdType k = 0; k < cell->GetNumberOfPoints(); ++k) {
-      const vtkIdType id = cell->GetPointId(k);
+    for (std::size_t k = 0; k < paths[c].size(); ++k) {
+      const vtkIdType id = paths[c][k];
       double x[3];
       g->GetPoint(id, x);
       if (k) along += std::sqrt((x[0] - prev[0]) * (x[0] - prev[0]) + (x[1] - prev[1]) * (x[1] - prev[1]) +

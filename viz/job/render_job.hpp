@@ -42,6 +42,11 @@ struct RenderOptions {
   // Movie: encoded with ffmpeg from the PNG frames, which are kept.
   std::optional<std::filesystem::path> movie;
   int fps = 10;
+  // Figures of 2D frames and sections (docs/rendering.md, "Figures"), all on by default:
+  bool tight = true;      // crop the image to the bodies and its bands (width x height: the most)
+  bool outline = true;    // smooth outlines (RasterOptions::smooth_outline), drawn in dark grey
+  bool scale_bar = true;  // a round length with its unit below the bodies
+  double smooth = 1.5;    // stress smoothing width in particle spacings (smooth.hpp); 0: as written
 };
 
 struct RenderResult {
@@ -53,13 +58,22 @@ struct RenderResult {
 // std::invalid_argument with a clear message on bad input.
 RenderResult render_series(const RenderOptions&, const std::function<void(std::size_t, std::size_t)>& progress = {});
 
-// The field image of one 2D frame (pixel colours over view), and its colour bar.
+// The field image of one 2D frame (pixel colours over view), and its colour bar: the stress of
+// drawn_frame, the smooth outline when o.outline.
 Image field_image(const ParticleFrame&, const View&, const RenderOptions&, ColorBar& bar);
 
-// Per-pixel in-plane stress (sxx, syy, sxy) of a frame: Raster with k = 3.
-Raster stress_raster(const ParticleFrame&, const View&);
+// The frame as it is drawn: its stress smoothed over o.smooth particle spacings, with the crack
+// paths of the series at the frame's time as barriers (smooth_stress); as it is when o.smooth <= 0.
+ParticleFrame drawn_frame(const ParticleFrame&, const RenderOptions&);
 
-// Photo comparison.
+// Per-pixel in-plane stress (sxx, syy, sxy; a section's "stress_uv") of a frame: Raster with k = 3.
+Raster stress_raster(const ParticleFrame&, const View&, const RasterOptions& = {});
+
+// Frames are named PREFIX_NNNNNN.png with NNNNNN the frame's index in the series, so renders of
+// different selections into one folder do not overwrite each other's frames.
+std::string frame_file_name(const std::string& prefix, std::size_t index);
+
+// Photo comparison (viz/job/compare.cpp).
 struct PhotoMap {
   double x0 = 0, y0 = 0;  // model coordinates of the photo's top-left pixel corner
   double scale = 1e-4;    // metres per photo pixel
@@ -74,6 +88,18 @@ struct CompareResult {
 CompareResult compare_with_photo(const RenderOptions&, const std::filesystem::path& photo, const PhotoMap&,
                                  const std::optional<std::vector<std::array<double, 3>>>& points,
                                  const std::filesystem::path& out_prefix);
+// Two runs of one scene (at two resolutions, say): the fringe orders of their frames nearest in
+// time to the selected frame of a, drawn as o says (drawn_frame), compared pixel by pixel over a
+// raster of the bodies of a (1024 pixels along its longer side) where both have material; with
+// difference_png, |N_a - N_b| as an image there (white 0, black 1 fringe or more, grey no material).
+struct RunComparison {
+  double rms = 0;          // RMS of the fringe-order difference
+  double mean_abs = 0;     // mean absolute difference
+  std::size_t pixels = 0;  // pixels compared
+  double time_a = 0, time_b = 0;
+};
+RunComparison compare_runs(const RenderOptions& a, const std::filesystem::path& b_series,
+                           const std::filesystem::path& difference_png = {});
 // Points file: "x y N" per line (model units m, fringe order); '#' comments.
 std::vector<std::array<double, 3>> read_fringe_points(const std::filesystem::path&);
 // RMS of (model N at (x, y) - N) over the points that fall on the body.
@@ -86,7 +112,8 @@ std::vector<std::filesystem::path> render_plots(const std::filesystem::path& out
 
 // Crack-opening profile of the crack frame nearest to `time`: normal and tangential crack opening
 // displacement against the distance along each crack, from OUT/cracks.pvd. Crack VTU files hold
-// polyline cells with point data "cod_normal" and "cod_tangential" (m) and "crack" (id).
+// each crack as line segments in path order (older files: one poly-line cell per crack) with point
+// data "cod_normal" and "cod_tangential" (m) and "crack" (id).
 std::filesystem::path render_cod_profile(const std::filesystem::path& out_dir, const std::filesystem::path& image_dir,
                                          double time, int width, int height);
 

@@ -86,6 +86,12 @@ struct Frame2D {
   std::vector<Polyline2D> overlays;            // model coordinates
   std::string title, time_stamp;
   ColorBar colorbar;
+  // Scale bar below the field (model coordinates in metres): a round length (1-2-5 steps) of at
+  // most a fifth of the field's width, labelled with its unit ("10 mm").
+  bool scale_bar = false;
+  // Fonts are sized for a window this many pixels high (0: the window's own height), so that a
+  // frame cropped to its bodies keeps the lettering of the size asked for.
+  int text_size = 0;
 };
 
 // A rectangle of image pixels: x from the left, y from the top row.
@@ -95,12 +101,19 @@ struct PixelRect {
 
 // Where render_frame_2d puts the model window [x0,x1] x [y0,y1] in an image of width x height:
 // the largest rectangle of the model window's aspect ratio that fits, with a small margin, left of
-// the colour bar band (when shown) and below the title band (when there is a title or time stamp).
+// the colour bar band (when shown), below the title band (when there is a title or time stamp)
+// and above the scale bar band (when shown).
 PixelRect frame_2d_field_viewport(int width, int height, const Frame2D& frame);
+
+// The size of an image no larger than width x height that holds the frame's field viewport
+// (as frame_2d_field_viewport gives it at width x height) and its bands with nothing to spare: the
+// tight frame of a figure. {width, height} of that image.
+std::array<int, 2> frame_2d_tight_size(int width, int height, const Frame2D& frame);
 
 // Renders the frame at the context's size: the field image (nearest-pixel, unlit, so its colours
 // come through exactly) fills frame_2d_field_viewport(); parallel projection in model units;
-// overlays on top; title (centred) and time stamp (right) in the top band; colour bar on the right.
+// overlays on top; title (centred) and time stamp (right) in the top band; colour bar (round ticks)
+// on the right; scale bar below the field's left end.
 Image render_frame_2d(HeadlessContext& context, const Frame2D& frame);
 
 // --- 3D particles ------------------------------------------------------------------------------

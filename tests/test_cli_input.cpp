@@ -1,0 +1,187 @@
+// Bad input through the cleave program (issue 15): exit 2, a message naming the key and the
+// reason, and nothing written; `check` prints the run's estimate; --force is accepted. The reader's
+// side of each check is in test_scene_input.cpp.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "libmpm/core/resources.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const std::string kBinary = CLEAVE_BINARY_DIR "/bin/cleave";
+
+// 200 particles, about three dozen steps, 4 frames.
+json tiny_scene() {
+  return json::parse(R"({
+    "analysis": {"type": "plane_strain"},
+    "resolution": 0.01,
+    "materials": [{"name": "steel", "type": "linear_elastic", "E": 2e11, "nu": 0.3, "density": 7800}],
+    "bodies": [{"name": "block", "material": "steel", "velocity": [1, 0.5],
+                "shape": {"type": "rectangle", "min": [0, 0], "max": [0.1, 0.05]}}],
+    "time": {"end": 3e-5},
+    "output": {"interval": 1e-5}
+  })");
+}
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+};
+
+class CliInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("cleave_cli_input_" +
+                                        std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+                                        "_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    ASSERT_TRUE(fs::exists(kBinary)) << kBinary << " is not built";
+  }
+  void TearDown() override {
+    std::error_code ec;
+    if (!HasFailure()) fs::remove_all(dir_, ec);
+  }
+  void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
+  static std::string read(const fs::path& f) {
+    std::ostringstream s;
+    s << std::ifstream(f).rdbuf();
+    return s.str();
+  }
+  // Runs `cleave ARGS` in the test directory, capturing stdout and stderr.
+  Result cleave(const std::string& args) {
+    const std::string cmd = "cd '" + dir_.string() + "' && '" + kBinary + "' " + args + " > ../" +
+                            dir_.filename().string() + ".out 2> ../" + dir_.filename().string() + ".err";
+    const int status = std::system(cmd.c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const fs::path base = dir_.parent_path() / dir_.filename();
+    r.out = read(base.string() + ".out");
+    r.err = read(base.string() + ".err");
+    fs::remove(base.string() + ".out");
+    fs::remove(base.string() + ".err");
+    return r;
+  }
+  // Names in the test directory other than the scenes written there: a refused run writes none.
+  std::vector<std::string> written() const {
+    std::vector<std::string> n;
+    for (const auto& e : fs::directory_iterator(dir_))
+      if (e.path().extension() != ".json") n.push_back(e.path().filename().string());
+    return n;
+  }
+  fs::path dir_;
+};
+
+bool has(const std::string& text, const std::string& word) { return text.find(word) != std::string::npos; }
+
+TEST_F(CliInput, AHugeTimeEndExits2NamingTheKeyAndWritesNothing) {
+  json s = tiny_scene();
+  s["time"]["end"] = 1e300;
+  write("end.json", s.dump());
+  for (const char* cmd : {"check end.json", "run end.json --out out --quiet"}) {
+    const Result r = cleave(cmd);
+    EXPECT_EQ(r.code, 2) << cmd << "\n" << r.err;
+    EXPECT_TRUE(has(r.err, "error at 'time.end'")) << r.err;
+    EXPECT_FALSE(has(r.err, "-9223372036854775808")) << r.err;
+  }
+  EXPECT_TRUE(written().empty());
+}
+
+TEST_F(CliInput, ANumberBeyondADoubleExits2NamingTheKeyAndTheLine) {
+  write("res.json", "{\n  \"analysis\": {\"type\": \"plane_strain\"},\n  \"resolution\": 1e400\n}\n");
+  const Result r = cleave("run res.json --out out --quiet");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_TRUE(has(r.err, "res.json: error at 'resolution'")) << r.err;
+  EXPECT_TRUE(has(r.err, "line 3, column 17")) << r.err;
+  EXPECT_FALSE(has(r.err, "json.exception")) << r.err;
+  const Result set = cleave("check res.json --set grid.cell_size=1e400");
+  EXPECT_EQ(set.code, 2) << set.err;
+  EXPECT_TRUE(written().empty());
+}
+
+TEST_F(CliInput, ADirectoryAsTheSceneExits2CannotOpen) {
+  fs::create_directories(dir_ / "scenes");
+  const Result r = cleave("check scenes");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(r.err, "cleave: cannot open scenes: is a directory\n");
+  const Result m = cleave("run missing.json --out out");
+  EXPECT_EQ(m.code, 2) << m.err;
+  EXPECT_EQ(m.err, "cleave: cannot open missing.json: no such file\n");
+  EXPECT_EQ(written(), std::vector<std::string>{"scenes"});
+}
+
+TEST_F(CliInput, ADuplicateKeyOrARepeatedSetExits2NamingBoth) {
+  std::string text = tiny_scene().dump(2);
+  text.insert(text.find("\"time\""), "\"time\": {\"end\": 1},\n  ");
+  write("dup.json", text);
+  const Result r = cleave("run dup.json --out out --quiet");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_TRUE(has(r.err, "error at 'time': duplicate key")) << r.err;
+  write("tiny.json", tiny_scene().dump());
+  const Result set = cleave("check tiny.json --set time.end=1e-5 --set time.end=2e-5");
+  EXPECT_EQ(set.code, 2) << set.err;
+  EXPECT_TRUE(has(set.err, "error at 'time.end': --set twice")) << set.err;
+  EXPECT_TRUE(written().empty());
+}
+
+TEST_F(CliInput, CheckPrintsTheEstimateOfPointsMemoryAndOutput) {
+  write("tiny.json", tiny_scene().dump());
+  const Result r = cleave("check tiny.json");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "estimate: 200 points")) << r.out;
+  EXPECT_TRUE(has(r.out, "of memory")) << r.out;
+  EXPECT_TRUE(has(r.out, "of output: 4 frames x")) << r.out;
+  EXPECT_TRUE(has(r.out, "free in tiny_out")) << r.out;
+  EXPECT_TRUE(written().empty()) << "check writes nothing";
+  // --force is an option of run; the tiny run fits anyway.
+  const Result run = cleave("run tiny.json --out out --quiet --force");
+  EXPECT_EQ(run.code, 0) << run.err;
+}
+
+TEST_F(CliInput, ASceneNeedingMoreMemoryThanTheMachineHasExits2AtOnce) {
+  json s = tiny_scene();
+  s["bodies"][0]["shape"]["max"] = {1, 1};
+  s["resolution"] = 3.3e-5;  // 3.7e9 particles, 9e8 grid nodes: about 1.8 TB
+  if (cleave::available_memory_bytes() > 2e12) GTEST_SKIP() << "this machine has more than 2 TB available";
+  write("big.json", s.dump());
+  const auto t0 = std::chrono::steady_clock::now();
+  const Result r = cleave("run big.json --out out --quiet");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 60.0)
+      << "refused before allocating, not after";  // generous: a bound on a hang, not a timing
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_TRUE(has(r.err, "error at 'resolution': needs about")) << r.err;
+  EXPECT_TRUE(has(r.err, "of memory")) << r.err;
+  EXPECT_TRUE(written().empty());
+}
+
+TEST_F(CliInput, AnOutputLargerThanTheFreeDiskExits2AndCheckWarnsOfIt) {
+  // A frame at every step of 9e5 steps: 9e5 frames of about 1.2 MB, about 1 TB.
+  json s = tiny_scene();
+  s["resolution"] = 0.002;  // 5000 particles, dt 1.7e-7 s
+  s["time"]["end"] = 0.15;
+  s["output"] = {{"interval", 1e-12}, {"global_interval", 1.0}};
+  write("many.json", s.dump());
+  const Result c = cleave("check many.json --out out");
+  ASSERT_EQ(c.code, 0) << c.err;
+  if (cleave::free_disk_bytes(dir_) > 900e9) GTEST_SKIP() << "more than 900 GB free here: the run would fit";
+  EXPECT_TRUE(has(c.err, "warning: output.interval: the run would write about")) << c.err;
+  const Result r = cleave("run many.json --out out --quiet");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_TRUE(has(r.err, "error at 'output.interval'")) << r.err;
+  EXPECT_TRUE(has(r.err, "free in out")) << r.err;
+  EXPECT_TRUE(written().empty());
+}
+
+}  // namespace
