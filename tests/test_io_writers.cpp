@@ -31,6 +31,8 @@
 #include <vector>
 
 #include "libmpm/crack/crack2d.hpp"
+#include "libmpm/crack/fronts.hpp"
+#include "libmpm/crack/mesh3d.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/io/crack_output.hpp"
 #include "libmpm/io/csv_writer.hpp"
@@ -103,15 +105,16 @@ std::vector<double> as_written(const std::vector<double>& v, const VtuFormat& fo
 }
 
 // The cells a PointSet is written as, (VTK type, point ids) in file order: a vertex per point, or
-// the polylines' segments (a one-point polyline: a vertex).
+// the polylines' segments (a one-point polyline: a vertex), then the triangles.
 std::vector<std::pair<int, std::vector<std::int64_t>>> expected_cells(const PointSet& ps) {
   std::vector<std::pair<int, std::vector<std::int64_t>>> cells;
-  if (ps.polylines.empty())
+  if (ps.polylines.empty() && ps.triangles.empty())
     for (std::size_t i = 0; i < ps.size(); ++i) cells.push_back({VTK_VERTEX, {std::int64_t(i)}});
   for (const auto& line : ps.polylines) {
     if (line.size() == 1) cells.push_back({VTK_VERTEX, {line[0]}});
     for (std::size_t k = 1; k < line.size(); ++k) cells.push_back({VTK_LINE, {line[k - 1], line[k]}});
   }
+  for (const auto& t : ps.triangles) cells.push_back({VTK_TRIANGLE, {t[0], t[1], t[2]}});
   return cells;
 }
 
@@ -226,7 +229,10 @@ with open(out + "/manifest.txt", "w") as man:
       std::string type;
       std::size_t count;
       man >> type >> count;
-      const int vtk_type = type == "vertex" ? VTK_VERTEX : type == "line" ? VTK_LINE : -1;
+      const int vtk_type = type == "vertex"     ? VTK_VERTEX
+                           : type == "line"     ? VTK_LINE
+                           : type == "triangle" ? VTK_TRIANGLE
+                                                : -1;
       ASSERT_NE(vtk_type, -1) << "meshio cell type " << type;
       cells.push_back({vtk_type, std::vector<std::int64_t>(count)});
     } else {
@@ -357,7 +363,59 @@ PointSet crack_file_contents() {
   return cleave::io::crack_point_set(cracks, tips);
 }
 
+// A 3D crack's frame: a penny crack (rings of triangles) opened by 1 um along its normal and slid
+// by 0.5 um, with its closed front.
+PointSet crack3d_file_contents() {
+  using V3 = cleave::Vec<3>;
+  const V3 n = V3(0, 0.6, 0.8);
+  const auto mesh = cleave::crack::ellipse_mesh(V3(0.01, 0.02, 0.03), n, V3(1, 0, 0), 4e-3, 4e-3, 1e-3);
+  std::vector<cleave::crack::ExplicitCrack<3>> cracks(1);
+  auto& c = cracks[0];
+  c.id = 0;
+  c.points = mesh.points, c.simplices = mesh.triangles;
+  c.update_extent();
+  for (const auto& x : c.points) c.above.push_back(x + 1e-6 * n + 5e-7 * V3(1, 0, 0)), c.below.push_back(x);
+  c.fronts = cleave::crack::crack_fronts(c, [](const V3&) { return true; });
+  return cleave::io::crack_point_set(cracks);
+}
+
 }  // namespace
+
+// A 3D crack's file: its surface as triangles and its front as line segments; the opening split
+// along the surface normal (1 um) and across it (the slide); the front's frame on the front nodes.
+TEST(WriteVtu, A3DCrackIsItsSurfaceAsTrianglesAndItsFrontsAsLinesThatMeshioAndVtkReadBack) {
+  const std::string py = CLEAVE_DEBIAN_PYTHON;
+  if (std::system((py + " -c 'import meshio, numpy' >/dev/null 2>&1").c_str()) != 0)
+    FAIL() << py << " cannot import meshio and numpy: install python3-meshio (the README's test command does)";
+  const PointSet ps = crack3d_file_contents();
+  ASSERT_EQ(ps.triangles.size(), 6u * (1 + 3 + 5 + 7));  // four rings: 6 (2k - 1) triangles in ring k
+  ASSERT_EQ(ps.polylines.size(), 1u);
+  EXPECT_EQ(ps.polylines[0].size(), 24u + 1u);  // the outer ring, closed
+  std::map<std::string, const cleave::io::PointArray*> a;
+  for (const auto& x : ps.arrays) a[x.name] = &x;
+  for (const char* name : {"above", "below", "cod", "cod_normal", "cod_tangential", "crack", "front_normal",
+                           "front_tangent", "front_ahead"})
+    ASSERT_TRUE(a.count(name)) << name;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    EXPECT_NEAR(a["cod_normal"]->values[i], 1e-6, 1e-15);
+    const double* t = &a["cod_tangential"]->values[3 * i];
+    EXPECT_NEAR(std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]), 5e-7, 1e-15);
+  }
+  const std::int64_t front_node = ps.polylines[0][0];
+  EXPECT_NEAR(a["front_ahead"]->values[3 * front_node] * a["front_ahead"]->values[3 * front_node] +
+                  a["front_ahead"]->values[3 * front_node + 1] * a["front_ahead"]->values[3 * front_node + 1] +
+                  a["front_ahead"]->values[3 * front_node + 2] * a["front_ahead"]->values[3 * front_node + 2],
+              1.0, 1e-12);
+  EXPECT_EQ(a["front_ahead"]->values[0], 0.0);  // the centre is no front node
+  const fs::path dir = test_dir();
+  for (const VtuFormat& format : kEveryFormat) {
+    SCOPED_TRACE(format_name(format));
+    const fs::path d = dir / format_name(format);
+    fs::create_directories(d);
+    expect_meshio_reads_back(ps, d, format);
+    expect_vtk_reads_back(d / "cloud.vtu", ps, format);
+  }
+}
 
 // Crack paths are written as VTK_LINE segments in path order (meshio has no VTK_POLY_LINE); a
 // one-point path is a vertex, so every point belongs to a cell.

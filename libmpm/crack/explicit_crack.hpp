@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "libmpm/core/types.hpp"
+#include "libmpm/crack/fronts.hpp"
 #include "libmpm/crack/surface.hpp"
 
 namespace cleave::crack {
@@ -23,8 +24,17 @@ enum class ContactLaw { Stick, Frictionless, Friction, None };
 // whose displacements overlap are in contact).
 enum class Detection { Volume, Displacement };
 
+// 3D cracks keep their fronts (boundary edges inside the material, with frames: fronts.hpp); in 2D
+// the fronts are the two end points, described by `tip` alone.
 template <int Dim>
-struct ExplicitCrack : Surface<Dim> {
+struct FrontsOf {};
+template <>
+struct FrontsOf<3> {
+  std::vector<CrackFront> fronts;
+};
+
+template <int Dim>
+struct ExplicitCrack : Surface<Dim>, FrontsOf<Dim> {
   using ContactLaw = crack::ContactLaw;
   using Detection = crack::Detection;
 

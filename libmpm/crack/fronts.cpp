@@ -8,19 +8,6 @@
 namespace cleave::crack {
 namespace {
 
-// Area-weighted normals at the points (the sum of the normals (b - a) x (c - a) of the triangles
-// around each point), normalised.
-std::vector<Vec<3>> point_normals(const Surface<3>& s) {
-  std::vector<Vec<3>> n(s.points.size(), Vec<3>::Zero());
-  for (const auto& t : s.simplices) {
-    const Vec<3> a = (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]);
-    for (int k = 0; k < 3; ++k) n[t[k]] += a;
-  }
-  for (auto& v : n)
-    if (v.squaredNorm() > 0.0) v.normalize();
-  return n;
-}
-
 void add_frames(const Surface<3>& s, const std::vector<Vec<3>>& normals, CrackFront& f) {
   const std::size_t m = f.nodes.size();
   for (std::size_t k = 0; k < m; ++k) {
@@ -41,6 +28,19 @@ void add_frames(const Surface<3>& s, const std::vector<Vec<3>>& normals, CrackFr
 }
 
 }  // namespace
+
+// (The sum of the normals (b - a) x (c - a) of the triangles around each point, whose length is
+// twice the area: area-weighted.)
+std::vector<Vec<3>> point_normals(const Surface<3>& s) {
+  std::vector<Vec<3>> n(s.points.size(), Vec<3>::Zero());
+  for (const auto& t : s.simplices) {
+    const Vec<3> a = (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]);
+    for (int k = 0; k < 3; ++k) n[t[k]] += a;
+  }
+  for (auto& v : n)
+    if (v.squaredNorm() > 0.0) v.normalize();
+  return n;
+}
 
 std::vector<CrackFront> crack_fronts(const Surface<3>& s, const std::function<bool(const Vec<3>&)>& inside) {
   // Boundary edges, oriented as in their triangles, chained start -> end.

@@ -21,6 +21,10 @@ struct CrackFront {
   std::vector<Vec<3>> normal, tangent, ahead;
 };
 
+// Unit normals at the points of s: the area-weighted mean of the normals of the triangles around
+// each point (towards "above").
+std::vector<Vec<3>> point_normals(const Surface<3>& s);
+
 // The boundary of s (consistently oriented triangles; the boundary runs counter-clockwise about
 // the normal) in loops, each cut into fronts where it leaves the material: an edge is a front
 // edge when inside(its midpoint). A loop that is all front is one closed front.

@@ -1,5 +1,7 @@
 #include "libmpm/io/crack_output.hpp"
 
+#include <stdexcept>
+
 namespace cleave::io {
 
 Vec<2> crack_opening(const crack::Crack2D& c, std::size_t i) {
@@ -48,6 +50,46 @@ PointSet crack_point_set(const std::vector<crack::Crack2D>& cracks, const std::v
   }
   for (PointArray* a : {&j1, &j2, &k1, &k2}) ps.arrays.push_back(std::move(*a));
   return ps;
+}
+
+PointSet crack_point_set(const std::vector<crack::ExplicitCrack<3>>& cracks) {
+  PointSet ps;
+  PointArray above{"above", 3, {}}, below{"below", 3, {}}, cod{"cod", 3, {}}, cn{"cod_normal", 1, {}};
+  PointArray ct{"cod_tangential", 3, {}}, id{"crack", 1, {}};
+  PointArray fn{"front_normal", 3, {}}, ft{"front_tangent", 3, {}}, fa{"front_ahead", 3, {}};
+  auto put = [](PointArray& a, const Vec<3>& v) { a.values.insert(a.values.end(), {v.x(), v.y(), v.z()}); };
+  for (const auto& c : cracks) {
+    const auto first = static_cast<int64_t>(ps.size());
+    const std::vector<Vec<3>> normal = crack::point_normals(c);
+    for (std::size_t i = 0; i < c.points.size(); ++i) {
+      ps.points.insert(ps.points.end(), {c.points[i].x(), c.points[i].y(), c.points[i].z()});
+      const Vec<3> d = c.above[i] - c.below[i];
+      put(above, c.above[i]), put(below, c.below[i]), put(cod, d);
+      cn.values.push_back(d.dot(normal[i]));
+      put(ct, d - d.dot(normal[i]) * normal[i]);
+      id.values.push_back(c.id);
+    }
+    for (const auto& t : c.simplices) ps.triangles.push_back({first + t[0], first + t[1], first + t[2]});
+    for (PointArray* a : {&fn, &ft, &fa}) a->values.resize(3 * ps.size(), 0.0);
+    for (const auto& f : c.fronts) {
+      std::vector<int64_t> line;
+      for (std::size_t k = 0; k < f.nodes.size(); ++k) {
+        const int64_t p = first + f.nodes[k];
+        line.push_back(p);
+        for (int d = 0; d < 3; ++d)
+          fn.values[3 * p + d] = f.normal[k][d], ft.values[3 * p + d] = f.tangent[k][d], fa.values[3 * p + d] = f.ahead[k][d];
+      }
+      if (f.closed && !line.empty()) line.push_back(line.front());
+      ps.polylines.push_back(std::move(line));
+    }
+  }
+  ps.arrays = {std::move(above), std::move(below), std::move(cod), std::move(cn), std::move(ct),
+               std::move(id),    std::move(fn),    std::move(ft),  std::move(fa)};
+  return ps;
+}
+
+PointSet crack_point_set(const std::vector<crack::ExplicitCrack<3>>&, const std::vector<crack::TipRecord>&) {
+  throw std::logic_error("crack-front parameters (J, K along 3D fronts) are not built yet");
 }
 
 }  // namespace cleave::io

@@ -20,6 +20,16 @@ PointSet crack_point_set(const std::vector<crack::Crack2D>& cracks);
 // The same with the crack-tip parameters on the tip points.
 PointSet crack_point_set(const std::vector<crack::Crack2D>& cracks, const std::vector<crack::TipRecord>& tips);
 
+// 3D cracks (cracks_NNNNNN.vtu): each crack's surface as triangles through its crack points, with
+// point data above, below, cod (as in 2D), cod_normal (cod along the surface's normal at the point,
+// opening > 0), cod_tangential (the rest of cod: sliding and tearing, 3 components), crack; and its
+// fronts as line cells through their nodes, with front_normal, front_tangent and front_ahead (the
+// front's frame: crack/fronts.hpp) at the front nodes and zero elsewhere.
+PointSet crack_point_set(const std::vector<crack::ExplicitCrack<3>>& cracks);
+// Crack-front parameters in 3D are not built yet (issue 17; the scene reader refuses "crack_tips"
+// in 3D): throws std::logic_error.
+PointSet crack_point_set(const std::vector<crack::ExplicitCrack<3>>& cracks, const std::vector<crack::TipRecord>& tips);
+
 // Normal and tangential opening at point i of crack c (the quantities written above).
 Vec<2> crack_opening(const crack::Crack2D& c, std::size_t i);
 

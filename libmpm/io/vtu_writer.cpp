@@ -93,6 +93,10 @@ void check(const PointSet& ps) {
       if (id < 0 || static_cast<std::size_t>(id) >= n)
         throw std::invalid_argument("PointSet polyline: point id " + std::to_string(id) +
                                     " out of range");
+  for (const auto& t : ps.triangles)
+    for (std::int64_t id : t)
+      if (id < 0 || static_cast<std::size_t>(id) >= n)
+        throw std::invalid_argument("PointSet triangle: point id " + std::to_string(id) + " out of range");
 }
 
 // A double as the nearest float; beyond float's range +-inf (a plain cast would be undefined there).
@@ -119,13 +123,14 @@ void write_vtu(const std::filesystem::path& file, const PointSet& ps, const VtuF
     offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
     types.push_back(type);
   };
-  if (ps.polylines.empty()) {
+  if (ps.polylines.empty() && ps.triangles.empty()) {
     for (std::size_t i = 0; i < n; ++i) cell({static_cast<std::int64_t>(i)}, 1);  // VTK_VERTEX
   } else {
     for (const auto& line : ps.polylines) {
       if (line.size() == 1) cell({line[0]}, 1);
       for (std::size_t k = 1; k < line.size(); ++k) cell({line[k - 1], line[k]}, 3);  // VTK_LINE
     }
+    for (const auto& t : ps.triangles) cell({t[0], t[1], t[2]}, 5);  // VTK_TRIANGLE
   }
 
   // Float32: converted copies (reserved up front, so the blocks' pointers stay valid).
