@@ -1,7 +1,12 @@
-// Helpers shared by the validation tests: scenes built in code, models stepped directly.
+// Helpers shared by the validation tests: scenes built in code, models stepped directly, and the
+// error a scene is refused with.
 #pragma once
+#include <gtest/gtest.h>
+
+#include <exception>
 #include <nlohmann/json.hpp>
 
+#include "libmpm/core/error.hpp"
 #include "libmpm/mpm/mpm_scene.hpp"
 #include "libmpm/mpm/mpm_method.hpp"
 #include "libmpm/mpm/mpm_step.hpp"
@@ -36,6 +41,21 @@ inline double dcb_load_point_opening(const Particles<2>& P) {
     ++(x0.y() > 0 ? nt : nb);
   }
   return top / nt - bottom / nb;
+}
+
+// The SceneError that f() throws; fails the test when it throws none or another exception.
+template <class F>
+SceneError error_of(F&& f) {
+  try {
+    f();
+  } catch (const SceneError& e) {
+    return e;
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "expected a SceneError, got: " << e.what();
+    return SceneError("(other)", e.what());
+  }
+  ADD_FAILURE() << "expected a SceneError, got none";
+  return SceneError("(none)", "");
 }
 
 }  // namespace cleave::test

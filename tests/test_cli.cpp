@@ -7,29 +7,23 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "cli_support.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-const std::string kBinary = CLEAVE_BINARY_DIR "/bin/cleave";
-
-std::string read_text(const fs::path& f) {
-  std::ifstream in(f, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using cleave::test::kCleave;
+using cleave::test::read_text;
+using cleave::test::Result;
 
 // 200 particles, about three dozen steps, 4 frames.
 json tiny_scene() {
@@ -59,18 +53,7 @@ json flyaway_scene() {
 }
 
 // 5000 particles, about 300 steps, 21 frames: long enough (under a second) to be stopped mid-run.
-json longer_scene() {
-  return json::parse(R"({
-    "analysis": {"type": "plane_strain"},
-    "grid": {"cell_size": 0.004},
-    "materials": [{"name": "steel", "type": "linear_elastic", "E": 2e11, "nu": 0.3, "density": 7800}],
-    "bodies": [{"name": "block", "material": "steel", "velocity": [0, -5],
-                "shape": {"type": "rectangle", "min": [0, 0], "max": [0.2, 0.1]}}],
-    "loads": [{"type": "symmetry", "axis": "y", "position": 0}],
-    "time": {"end": 1e-4},
-    "output": {"interval": 5e-6, "fields": ["displacement", "velocity", "stress"]}
-  })");
-}
+json longer_scene() { return cleave::test::block_on_symmetry_plane(1e-4, 5e-6); }
 
 // A scene with one bad value: Poisson's ratio 0.7.
 json bad_scene() {
@@ -79,44 +62,14 @@ json bad_scene() {
   return s;
 }
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-class Cli : public ::testing::Test {
+class Cli : public cleave::test::CliTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("cleave_cli_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    ASSERT_TRUE(fs::exists(kBinary)) << kBinary << " is not built";
-  }
-  void TearDown() override {
-    std::error_code ec;
-    if (!HasFailure()) fs::remove_all(dir_, ec);
-  }
-
-  fs::path write_scene(const std::string& name, const json& scene) {
-    const fs::path f = dir_ / name;
-    std::ofstream(f) << scene.dump(2) << "\n";
-    return f;
-  }
+  Cli() : CliTest("cleave_cli_") {}
 
   // Runs `cleave ARGS` in the test directory; stdout and stderr are captured to files.
   Result cleave(const std::string& args) {
-    const std::string cmd = "cd '" + dir_.string() + "' && '" + kBinary + "' " + args +
-                            " > cli_stdout.txt 2> cli_stderr.txt";
-    const int status = std::system(cmd.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = read_text(dir_ / "cli_stdout.txt");
-    r.err = read_text(dir_ / "cli_stderr.txt");
-    fs::remove(dir_ / "cli_stdout.txt");
-    fs::remove(dir_ / "cli_stderr.txt");
-    return r;
+    return cleave::test::run_cleave(args, dir_ / "cli_stdout.txt", dir_ / "cli_stderr.txt",
+                                    "cd '" + dir_.string() + "' && ");
   }
 
   // Directories in the test directory (a failed command must create none).
@@ -138,8 +91,6 @@ class Cli : public ::testing::Test {
       e.emplace_back(std::stod((*it)[1].str()), (*it)[2].str());
     return e;
   }
-
-  fs::path dir_;
 };
 
 // ------------------------------------------------------------------------------------------------
@@ -389,7 +340,7 @@ TEST_F(Cli, ResumeAfterAKilledRunGivesTheSameResult) {
     const int null = ::open("/dev/null", O_WRONLY);
     ::dup2(null, 1);
     ::dup2(null, 2);
-    ::execl(kBinary.c_str(), kBinary.c_str(), "run", "long.json", "--out", "killed", "--threads", "1", "--quiet",
+    ::execl(kCleave.c_str(), kCleave.c_str(), "run", "long.json", "--out", "killed", "--threads", "1", "--quiet",
             static_cast<char*>(nullptr));
     ::_exit(127);
   }

@@ -2,25 +2,22 @@
 // reason, and nothing written; `check` prints the run's estimate; --force is accepted. The reader's
 // side of each check is in test_scene_input.cpp.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
+#include <vector>
 
+#include "cli_support.hpp"
 #include "libmpm/core/resources.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-const std::string kBinary = CLEAVE_BINARY_DIR "/bin/cleave";
+using cleave::test::Result;
 
 // 200 particles, about three dozen steps, 4 frames.
 json tiny_scene() {
@@ -35,44 +32,15 @@ json tiny_scene() {
   })");
 }
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-class CliInput : public ::testing::Test {
+class CliInput : public cleave::test::CliTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("cleave_cli_input_" +
-                                        std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-                                        "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    ASSERT_TRUE(fs::exists(kBinary)) << kBinary << " is not built";
-  }
-  void TearDown() override {
-    std::error_code ec;
-    if (!HasFailure()) fs::remove_all(dir_, ec);
-  }
+  CliInput() : CliTest("cleave_cli_input_") {}
   void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
-  static std::string read(const fs::path& f) {
-    std::ostringstream s;
-    s << std::ifstream(f).rdbuf();
-    return s.str();
-  }
-  // Runs `cleave ARGS` in the test directory, capturing stdout and stderr.
+  // Runs `cleave ARGS` in the test directory, capturing stdout and stderr beside it (a refused run
+  // must leave the directory as it was).
   Result cleave(const std::string& args) {
-    const std::string cmd = "cd '" + dir_.string() + "' && '" + kBinary + "' " + args + " > ../" +
-                            dir_.filename().string() + ".out 2> ../" + dir_.filename().string() + ".err";
-    const int status = std::system(cmd.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    const fs::path base = dir_.parent_path() / dir_.filename();
-    r.out = read(base.string() + ".out");
-    r.err = read(base.string() + ".err");
-    fs::remove(base.string() + ".out");
-    fs::remove(base.string() + ".err");
-    return r;
+    return cleave::test::run_cleave(args, dir_.string() + ".out", dir_.string() + ".err",
+                                    "cd '" + dir_.string() + "' && ");
   }
   // Names in the test directory other than the scenes written there: a refused run writes none.
   std::vector<std::string> written() const {
@@ -81,7 +49,6 @@ class CliInput : public ::testing::Test {
       if (e.path().extension() != ".json") n.push_back(e.path().filename().string());
     return n;
   }
-  fs::path dir_;
 };
 
 bool has(const std::string& text, const std::string& word) { return text.find(word) != std::string::npos; }

@@ -17,11 +17,13 @@
 #include "libmpm/mpm/mpm_step.hpp"
 #include "libmpm/pd/pd_scene.hpp"
 #include "libmpm/scene/loads.hpp"
+#include "support.hpp"
 
 namespace {
 
 using nlohmann::json;
 using cleave::SceneError;
+using cleave::test::error_of;
 
 // A valid plane-strain MPM scene: a 0.1 x 0.05 m steel block, 1 cm cells, explicit grid.
 json mpm_scene() {
@@ -46,17 +48,6 @@ json pd_scene() {
                 "shape": {"type": "rectangle", "min": [0, 0], "max": [0.1, 0.05]}}],
     "time": {"end": 1e-6}
   })");
-}
-
-// The SceneError that f() throws ("(none)" when it throws none).
-template <class F>
-SceneError error_of(F&& f) {
-  try {
-    f();
-  } catch (const SceneError& e) {
-    return e;
-  }
-  return SceneError("(none)", "");
 }
 
 // --- methods ------------------------------------------------------------------------------------

@@ -18,11 +18,11 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "cli_support.hpp"
 #include "libmpm/core/error.hpp"
 #include "libmpm/io/output_lock.hpp"
 #include "libmpm/method/run_scene.hpp"
@@ -33,15 +33,10 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-const std::string kBinary = CLEAVE_BINARY_DIR "/bin/cleave";
-
-std::string read_text(const fs::path& f) {
-  std::ifstream in(f, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::fresh_dir;
+using test::kCleave;
+using test::read_text;
+using test::Result;
 
 json read_json(const fs::path& f) { return json::parse(read_text(f)); }
 
@@ -73,18 +68,7 @@ bool has_temporaries(const fs::path& dir) {
 }
 
 // 5000 particles, about 900 steps, 4 frames: mostly between frames, whenever it is stopped.
-json long_scene() {
-  return json::parse(R"({
-    "analysis": {"type": "plane_strain"},
-    "grid": {"cell_size": 0.004},
-    "materials": [{"name": "steel", "type": "linear_elastic", "E": 2e11, "nu": 0.3, "density": 7800}],
-    "bodies": [{"name": "block", "material": "steel", "velocity": [0, -5],
-                "shape": {"type": "rectangle", "min": [0, 0], "max": [0.2, 0.1]}}],
-    "loads": [{"type": "symmetry", "axis": "y", "position": 0}],
-    "time": {"end": 3e-4},
-    "output": {"interval": 1e-4, "fields": ["displacement", "velocity", "stress"]}
-  })");
-}
+json long_scene() { return test::block_on_symmetry_plane(3e-4, 1e-4); }
 
 // 50 particles, about 1000 steps, 11 frames of a few kB, and a global.csv row every step (about
 // 150 kB in all): the file that outgrows a 64 kB size limit is global.csv, after a few frames.
@@ -100,30 +84,16 @@ json many_rows_scene() {
   })");
 }
 
-struct Result {
-  int code = -1;  // exit status, or 128 + signal when killed (as a shell reports it)
-  std::string out, err;
-};
-
-class RunFaults : public ::testing::Test {
+class RunFaults : public test::CliTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("cleave_faults_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    ASSERT_TRUE(fs::exists(kBinary)) << kBinary << " is not built";
-  }
+  RunFaults() : CliTest("cleave_faults_") {}
   void TearDown() override {
     for (const pid_t pid : children_) {  // a child a failed assertion left running
       ::kill(pid, SIGKILL);
       ::waitpid(pid, nullptr, 0);
     }
-    std::error_code ec;
-    if (!HasFailure()) fs::remove_all(dir_, ec);
+    CliTest::TearDown();
   }
-
-  void write_scene(const std::string& name, const json& scene) { std::ofstream(dir_ / name) << scene.dump(2) << "\n"; }
 
   // Starts `cleave ARGS...` in the test directory, stdout and stderr to files there; a positive
   // fsize_limit sets RLIMIT_FSIZE (bytes per file, as `ulimit -f`) for the child.
@@ -139,10 +109,10 @@ class RunFaults : public ::testing::Test {
         const rlimit lim{fsize_limit, fsize_limit};
         if (::setrlimit(RLIMIT_FSIZE, &lim) != 0) ::_exit(126);
       }
-      std::vector<char*> argv{const_cast<char*>(kBinary.c_str())};
+      std::vector<char*> argv{const_cast<char*>(kCleave.c_str())};
       for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
       argv.push_back(nullptr);
-      ::execv(kBinary.c_str(), argv.data());
+      ::execv(kCleave.c_str(), argv.data());
       ::_exit(127);
     }
     children_.push_back(pid);
@@ -179,7 +149,6 @@ class RunFaults : public ::testing::Test {
     return fs::exists(file);
   }
 
-  fs::path dir_;
   std::vector<pid_t> children_;
 };
 
@@ -397,9 +366,7 @@ TEST_F(RunFaults, AFullDiskNamesTheCauseAndTheFileAndKeepsTheLastCompleteFrameAn
 // One run per output directory
 
 TEST(RunFaultsInProcess, TheOutputLockRefusesASecondHolderAndNamesTheFirst) {
-  const fs::path dir = fs::path(CLEAVE_BINARY_DIR) / "test_run_faults" / "lock";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_dir(fs::path(CLEAVE_BINARY_DIR) / "test_run_faults" / "lock");
   {
     const io::OutputLock first(dir, "pid 1, started today: cleave run a.json");
     try {
@@ -424,7 +391,7 @@ TEST_F(RunFaults, ASecondRunIntoABusyDirectoryExits2NamingTheFirstAndAKilledRunL
     if (::chdir(dir_.c_str()) != 0) ::_exit(127);
     const int err = ::open("second_stderr.txt", O_WRONLY | O_CREAT | O_TRUNC, 0644);
     ::dup2(err, 2);
-    ::execl(kBinary.c_str(), kBinary.c_str(), "run", "long.json", "--out", "out", "--quiet",
+    ::execl(kCleave.c_str(), kCleave.c_str(), "run", "long.json", "--out", "out", "--quiet",
             static_cast<char*>(nullptr));
     ::_exit(127);
   }

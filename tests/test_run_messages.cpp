@@ -11,6 +11,7 @@
 #include <regex>
 #include <string>
 
+#include "files.hpp"
 #include "libmpm/core/error.hpp"
 #include "libmpm/method/run_scene.hpp"
 #include "support.hpp"
@@ -22,10 +23,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 fs::path test_dir(const std::string& tag) {
-  const fs::path d = fs::path(CLEAVE_BINARY_DIR) / "test_run_messages" / tag;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return test::fresh_dir(fs::path(CLEAVE_BINARY_DIR) / "test_run_messages" / tag);
 }
 
 // A 6 x 3 mm steel block in 0.6 mm cells: the stable step h / c is about 1.02e-7 s.

@@ -3,25 +3,27 @@
 // big for the machine. Each is a SceneError naming the key and the reason, before anything is built
 // or written. The CLI's side (exit 2, nothing written) is in test_cli_input.cpp.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "files.hpp"
 #include "libmpm/core/error.hpp"
 #include "libmpm/core/resources.hpp"
 #include "libmpm/method/run_scene.hpp"
 #include "libmpm/mpm/mpm_scene.hpp"
 #include "libmpm/pd/pd_scene.hpp"
 #include "libmpm/scene/json_text.hpp"
+#include "support.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 using cleave::SceneError;
+using cleave::test::error_of;
 
 // A valid plane-strain scene: a 0.1 x 0.05 m steel block, 1 cm cells.
 json block() {
@@ -35,29 +37,11 @@ json block() {
   })");
 }
 
-// The SceneError that f() throws; fails the test when it throws none or another exception.
-template <class F>
-SceneError error_of(F&& f) {
-  try {
-    f();
-  } catch (const SceneError& e) {
-    return e;
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected a SceneError, got: " << e.what();
-    return SceneError("(other)", e.what());
-  }
-  ADD_FAILURE() << "expected a SceneError, got none";
-  return SceneError("(none)", "");
-}
-
 bool has(const std::string& text, const std::string& word) { return text.find(word) != std::string::npos; }
 
 // A temporary directory removed at the end of the test.
 struct TempDir {
-  fs::path path = fs::temp_directory_path() /
-                  ("cleave_input_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-                   "_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
+  fs::path path = cleave::test::fresh_dir(cleave::test::per_test_path("cleave_input_"));
   ~TempDir() { fs::remove_all(path); }
 };
 

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
-#include <sstream>
 #include <unistd.h>
 
 #include <vtkNew.h>
@@ -14,6 +13,7 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
+#include "cli_support.hpp"
 #include "libmpm/io/pvd_writer.hpp"
 #include "libmpm/io/vtu_writer.hpp"
 #include "viz/job/render_job.hpp"
@@ -22,32 +22,14 @@ namespace cleave::viz {
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kCleave = CLEAVE_BINARY_DIR "/bin/cleave";
-
-struct Result {
-  int code;
-  std::string out, err;
-};
-Result run(const std::string& args, const fs::path& dir) {
-  const fs::path o = dir / "stdout.txt", e = dir / "stderr.txt";
-  const std::string cmd = "env -u DISPLAY " + kCleave + " " + args + " >" + o.string() + " 2>" + e.string();
-  const int st = std::system(cmd.c_str());
-  auto slurp = [](const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  };
-  return {WEXITSTATUS(st), slurp(o), slurp(e)};
-}
+using test::fresh_dir;
+constexpr auto& run = test::run_headless;  // `cleave ARGS` with DISPLAY unset (cli_support.hpp)
 
 class RenderCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     // CTest runs each test of this suite in its own process, concurrently: one directory per process.
-    dir_ = fs::path(CLEAVE_BINARY_DIR) / ("test_viz_cli_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = fresh_dir(fs::path(CLEAVE_BINARY_DIR) / ("test_viz_cli_" + std::to_string(getpid())));
     // The Brazilian disk at 1 mm cells, a short damped run: ~1 300 particles, 7 frames.
     const auto r = run(std::string("run ") + CLEAVE_SOURCE_DIR "/data/scenes/brazilian_disk.json --quiet --threads 1 " +
                            "--set resolution=1 --set time.end=0.3 --out " + (dir_ / "disk").string(),
@@ -189,8 +171,7 @@ TEST_F(RenderCli, CrackPlotsAndOverlay) {
 TEST_F(RenderCli, PlotsFindCsvColumnsByTheirNamesWithUnitsOrTheOlderBareNames) {
   const fs::path d = dir_ / "csv_names";
   auto plot_with = [&](const std::string& header, bool speed, int code = 0) {
-    fs::remove_all(d);
-    fs::create_directories(d);
+    fresh_dir(d);
     std::ofstream tips(d / "crack_tips.csv");
     tips << header << "\n";
     for (int k = 0; k <= 10; ++k)
@@ -198,8 +179,7 @@ TEST_F(RenderCli, PlotsFindCsvColumnsByTheirNamesWithUnitsOrTheOlderBareNames) {
     tips.close();
     const auto r = run("plot " + d.string() + " --size 400x300", dir_);
     EXPECT_EQ(r.code, code) << r.err;
-    std::ifstream png(d / "render" / "K.png", std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(png)), std::istreambuf_iterator<char>());
+    return test::read_text(d / "render" / "K.png");
   };
   const std::string with_units =
       plot_with("time_s,crack,tip,x_m,y_m,speed_m_per_s,J1_J_per_m2,J2_J_per_m2,KI_Pa_sqrt_m,KII_Pa_sqrt_m", true);
@@ -246,9 +226,7 @@ TEST_F(RenderCli, RendersZlibFloat32FramesLikeRawFloat64Frames) {
 }
 
 TEST(RenderCli3D, CubesAndCutPlane) {
-  const fs::path dir = fs::path(CLEAVE_BINARY_DIR) / "test_viz_cli_3d";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_dir(fs::path(CLEAVE_BINARY_DIR) / "test_viz_cli_3d");
   std::ofstream(dir / "cube.json") << R"({"analysis": {"type": "3d"}, "grid": {"cell_size": 0.005},
     "materials": [{"name": "m", "type": "linear_elastic", "E": 1e9, "nu": 0.3, "density": 1000}],
     "bodies": [{"name": "b", "material": "m", "velocity": [0, -5, 0],

@@ -9,14 +9,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli_support.hpp"
 #include "viz/job/render_job.hpp"
 #include "viz/raster/rasterize.hpp"
 
@@ -24,36 +23,12 @@ namespace cleave::viz {
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kCleave = CLEAVE_BINARY_DIR "/bin/cleave";
-
-struct Result {
-  int code;
-  std::string out, err;
-};
-Result run(const std::string& args, const fs::path& dir) {
-  const fs::path o = dir / "stdout.txt", e = dir / "stderr.txt";
-  const std::string cmd = "env -u DISPLAY " + kCleave + " " + args + " >" + o.string() + " 2>" + e.string();
-  const int st = std::system(cmd.c_str());
-  auto slurp = [](const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  };
-  return {WEXITSTATUS(st), slurp(o), slurp(e)};
-}
+using test::read_text;
+constexpr auto& run = test::run_headless;  // `cleave ARGS` with DISPLAY unset (cli_support.hpp)
 
 // A fresh directory per test (CTest runs each test in its own process, concurrently).
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::path(CLEAVE_BINARY_DIR) / ("test_viz_figures_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string slurp_binary(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return test::fresh_dir(fs::path(CLEAVE_BINARY_DIR) / ("test_viz_figures_" + name + "_" + std::to_string(getpid())));
 }
 
 bool is_white(const Image& im, int x, int y) {
@@ -83,12 +58,12 @@ TEST(RenderFiles, FramesAreNamedByTheirIndexInTheSeriesSoLastDoesNotOverwriteFir
   const std::string common = "render " + (dir / "disk").string() + " --field syy --size 200x200 --images " + images.string();
   r = run(common + " --frames first", dir);
   ASSERT_EQ(r.code, 0) << r.err;
-  const std::string first = slurp_binary(images / "syy_000000.png");
+  const std::string first = read_text(images / "syy_000000.png");
   ASSERT_FALSE(first.empty());
   r = run(common + " --frames last", dir);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(images / "syy_000006.png")) << "the last of 7 frames is frame 6";
-  EXPECT_EQ(slurp_binary(images / "syy_000000.png"), first) << "the first frame's image was overwritten";
+  EXPECT_EQ(read_text(images / "syy_000000.png"), first) << "the first frame's image was overwritten";
   // every:3 names frames 0, 3, 6 and still encodes a movie of those three.
   r = run(common + " --frames every:3 --fringes dark --fringe-constant 7 --thickness 5 --movie m.mp4", dir);
   ASSERT_EQ(r.code, 0) << r.err;
