@@ -740,8 +740,10 @@ TEST(SceneLoads, SymmetryAndVelocityConditions) {
 template <int Dim>
 void build_bounded(const json& scene, const std::string& path) {
   ::alarm(3);
+#ifndef __SANITIZE_ADDRESS__  // AddressSanitizer reserves terabytes of address space for its shadow memory
   const rlimit lim{2ull << 30, 2ull << 30};
   ::setrlimit(RLIMIT_AS, &lim);
+#endif
   try {
     (void)cleave::build_model<Dim>(scene);
     std::_Exit(10);
