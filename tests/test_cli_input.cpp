@@ -3,7 +3,6 @@
 // side of each check is in test_scene_input.cpp.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -123,10 +122,9 @@ TEST_F(CliInput, ASceneNeedingMoreMemoryThanTheMachineHasExits2AtOnce) {
   s["resolution"] = 3.3e-5;  // 3.7e9 particles, 9e8 grid nodes: about 1.8 TB
   if (cleave::available_memory_bytes() > 2e12) GTEST_SKIP() << "this machine has more than 2 TB available";
   write("big.json", s.dump());
-  const auto t0 = std::chrono::steady_clock::now();
+  // Refused before allocating: 1.8 TB asked of the allocator would end in std::bad_alloc, not in
+  // the budget's message at the resolution key (no wall-time bound: a loaded machine must not fail).
   const Result r = cleave("run big.json --out out --quiet");
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 60.0)
-      << "refused before allocating, not after";  // generous: a bound on a hang, not a timing
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_TRUE(has(r.err, "error at 'resolution': needs about")) << r.err;
   EXPECT_TRUE(has(r.err, "of memory")) << r.err;

@@ -189,6 +189,15 @@ TEST(WriteVtu, VtkReadsBackBitExact) {
 
 namespace {
 
+// Debian's python with meshio and numpy, which the README's test command installs.
+bool has_meshio() {
+  static const bool ok =
+      std::system((std::string(CLEAVE_DEBIAN_PYTHON) + " -c 'import meshio, numpy' >/dev/null 2>&1").c_str()) == 0;
+  return ok;
+}
+const std::string kNoMeshio = std::string(CLEAVE_DEBIAN_PYTHON) +
+                              " cannot import meshio and numpy: install python3-meshio (the README's test command does)";
+
 // Writes `ps` to dir/cloud.vtu in `format`, reads it with meshio and compares every value bit for
 // bit (float32: with the floats written) and every cell.
 void expect_meshio_reads_back(const PointSet& ps, const fs::path& dir, const VtuFormat& format = {}) {
@@ -268,9 +277,7 @@ with open(out + "/manifest.txt", "w") as man:
 }  // namespace
 
 TEST(WriteVtu, MeshioReadsBackBitExact) {
-  const std::string py = CLEAVE_DEBIAN_PYTHON;
-  if (std::system((py + " -c 'import meshio, numpy' >/dev/null 2>&1").c_str()) != 0)
-    FAIL() << py << " cannot import meshio and numpy: install python3-meshio (the README's test command does)";
+  if (!has_meshio()) FAIL() << kNoMeshio;
   const fs::path dir = test_dir();
   expect_meshio_reads_back(make_cloud(213), dir);
 }
@@ -279,9 +286,7 @@ TEST(WriteVtu, MeshioReadsBackBitExact) {
 // block up by its offset string while rewriting the offsets it has passed, and an earlier array's
 // rewritten offset could equal a later array's (here "Points", then "connectivity").
 TEST(WriteVtu, MeshioReadsBackEveryArrayLayoutBitExact) {
-  const std::string py = CLEAVE_DEBIAN_PYTHON;
-  if (std::system((py + " -c 'import meshio, numpy' >/dev/null 2>&1").c_str()) != 0)
-    FAIL() << py << " cannot import meshio and numpy: install python3-meshio (the README's test command does)";
+  if (!has_meshio()) FAIL() << kNoMeshio;
   const fs::path dir = test_dir();
   const std::vector<std::vector<std::pair<std::string, int>>> layouts = {
       {{"displacement", 3}, {"stress", 6}},         // output.fields = displacement, stress: every count
@@ -344,6 +349,18 @@ void expect_vtk_reads_back(const fs::path& f, const PointSet& ps, const VtuForma
   EXPECT_EQ(cells, expected_cells(ps)) << "vtk cells";
 }
 
+// `ps` written in every encoding, each read back by meshio and by VTK.
+void expect_every_format_reads_back(const PointSet& ps) {
+  const fs::path dir = test_dir();
+  for (const VtuFormat& format : kEveryFormat) {
+    SCOPED_TRACE(format_name(format));
+    const fs::path d = dir / format_name(format);
+    fs::create_directories(d);
+    expect_meshio_reads_back(ps, d, format);
+    expect_vtk_reads_back(d / "cloud.vtu", ps, format);
+  }
+}
+
 // Two cracks as the run writes them (io/crack_output.hpp), with tip values on their tips.
 PointSet crack_file_contents() {
   std::vector<cleave::crack::Crack2D> cracks(2);
@@ -384,9 +401,7 @@ PointSet crack3d_file_contents() {
 // A 3D crack's file: its surface as triangles and its front as line segments; the opening split
 // along the surface normal (1 um) and across it (the slide); the front's frame on the front nodes.
 TEST(WriteVtu, A3DCrackIsItsSurfaceAsTrianglesAndItsFrontsAsLinesThatMeshioAndVtkReadBack) {
-  const std::string py = CLEAVE_DEBIAN_PYTHON;
-  if (std::system((py + " -c 'import meshio, numpy' >/dev/null 2>&1").c_str()) != 0)
-    FAIL() << py << " cannot import meshio and numpy: install python3-meshio (the README's test command does)";
+  if (!has_meshio()) FAIL() << kNoMeshio;
   const PointSet ps = crack3d_file_contents();
   ASSERT_EQ(ps.triangles.size(), 6u * (1 + 3 + 5 + 7));  // four rings: 6 (2k - 1) triangles in ring k
   ASSERT_EQ(ps.polylines.size(), 1u);
@@ -398,23 +413,12 @@ TEST(WriteVtu, A3DCrackIsItsSurfaceAsTrianglesAndItsFrontsAsLinesThatMeshioAndVt
     ASSERT_TRUE(a.count(name)) << name;
   for (std::size_t i = 0; i < ps.size(); ++i) {
     EXPECT_NEAR(a["cod_normal"]->values[i], 1e-6, 1e-15);
-    const double* t = &a["cod_tangential"]->values[3 * i];
-    EXPECT_NEAR(std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]), 5e-7, 1e-15);
+    EXPECT_NEAR(cleave::Vec<3>(&a["cod_tangential"]->values[3 * i]).norm(), 5e-7, 1e-15);
   }
   const std::int64_t front_node = ps.polylines[0][0];
-  EXPECT_NEAR(a["front_ahead"]->values[3 * front_node] * a["front_ahead"]->values[3 * front_node] +
-                  a["front_ahead"]->values[3 * front_node + 1] * a["front_ahead"]->values[3 * front_node + 1] +
-                  a["front_ahead"]->values[3 * front_node + 2] * a["front_ahead"]->values[3 * front_node + 2],
-              1.0, 1e-12);
+  EXPECT_NEAR(cleave::Vec<3>(&a["front_ahead"]->values[3 * front_node]).norm(), 1.0, 1e-12);
   EXPECT_EQ(a["front_ahead"]->values[0], 0.0);  // the centre is no front node
-  const fs::path dir = test_dir();
-  for (const VtuFormat& format : kEveryFormat) {
-    SCOPED_TRACE(format_name(format));
-    const fs::path d = dir / format_name(format);
-    fs::create_directories(d);
-    expect_meshio_reads_back(ps, d, format);
-    expect_vtk_reads_back(d / "cloud.vtu", ps, format);
-  }
+  expect_every_format_reads_back(ps);
 }
 
 // Crack paths are written as VTK_LINE segments in path order (meshio has no VTK_POLY_LINE); a
@@ -433,20 +437,11 @@ TEST(WriteVtu, CrackPathsAreLineSegmentsThatVtkReadsBackInPathOrder) {
 // The crack files of a run: meshio gives back every segment of every crack and every point array
 // (above, below, cod, cod_normal, cod_tangential, crack, J1, J2, KI, KII), in every encoding.
 TEST(WriteVtu, MeshioReadsEverySegmentAndPointArrayOfACrackFile) {
-  const std::string py = CLEAVE_DEBIAN_PYTHON;
-  if (std::system((py + " -c 'import meshio, numpy' >/dev/null 2>&1").c_str()) != 0)
-    FAIL() << py << " cannot import meshio and numpy: install python3-meshio (the README's test command does)";
+  if (!has_meshio()) FAIL() << kNoMeshio;
   const PointSet ps = crack_file_contents();
   ASSERT_EQ(ps.arrays.size(), 10u);
   ASSERT_EQ(ps.polylines.size(), 2u);
-  const fs::path dir = test_dir();
-  for (const VtuFormat& format : kEveryFormat) {
-    SCOPED_TRACE(format_name(format));
-    const fs::path d = dir / format_name(format);
-    fs::create_directories(d);
-    expect_meshio_reads_back(ps, d, format);
-    expect_vtk_reads_back(d / "cloud.vtu", ps, format);
-  }
+  expect_every_format_reads_back(ps);
 }
 
 // output.compression = zlib and output.precision = float32, alone and together: VTK's reader and
@@ -454,9 +449,7 @@ TEST(WriteVtu, MeshioReadsEverySegmentAndPointArrayOfACrackFile) {
 // that end the compressed arrays in a partial block, a full block, or many blocks (and no points:
 // empty arrays, zero blocks).
 TEST(WriteVtu, EveryCompressionAndPrecisionReadsBackInVtkAndMeshio) {
-  const std::string py = CLEAVE_DEBIAN_PYTHON;
-  if (std::system((py + " -c 'import meshio, numpy' >/dev/null 2>&1").c_str()) != 0)
-    FAIL() << py << " cannot import meshio and numpy: install python3-meshio (the README's test command does)";
+  if (!has_meshio()) FAIL() << kNoMeshio;
   const fs::path dir = test_dir();
   // 4096 points: a scalar's 32 KiB of doubles fill exactly one zlib block (VTK's partial-size 0).
   for (std::size_t n : {0, 1, 3, 213, 4096, 20000})

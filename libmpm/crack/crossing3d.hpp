@@ -104,6 +104,19 @@ inline int perturbed_edge_sign(const Vec<3>& i, const Vec<3>& a, const Vec<3>& b
 
 }  // namespace detail
 
+// Does the closed segment p-q meet the closed triangle (a, b, c) off its plane, by the orientation
+// signs sign(a, b, c, d) of signed volumes? The line meets the plane inside the closed triangle iff
+// it sees the three edges turning the same way (zero: through an edge or a vertex, which counts);
+// a segment in the plane never counts (it cannot separate the two sides).
+template <class Sign>
+bool segment_meets_triangle(const Vec<3>& p, const Vec<3>& q, const Vec<3>& a, const Vec<3>& b, const Vec<3>& c,
+                            Sign&& sign) {
+  const int sp = sign(a, b, c, p), sq = sign(a, b, c, q);
+  if (sp * sq > 0 || (sp == 0 && sq == 0)) return false;  // same side, or in the plane
+  const int e0 = sign(p, q, a, b), e1 = sign(p, q, b, c), e2 = sign(p, q, c, a);
+  return !((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0));
+}
+
 // One triangle (t0, t1, t2) against the particle-node line, as seen by triangle_mesh_crossing.
 enum class TriangleHit : int8_t {
   None = 0,

@@ -19,16 +19,6 @@ std::string point_text(const Vec<3>& x) {
   return b;
 }
 
-// Does the closed segment p-q meet the closed triangle (a, b, c) off its plane? Exact signs: the
-// points of a generated or refined plane surface are coplanar only to rounding, and rounded signs
-// made neighbouring triangles of one plane "intersect".
-bool segment_meets_triangle(const Vec<3>& p, const Vec<3>& q, const Vec<3>& a, const Vec<3>& b, const Vec<3>& c) {
-  const int sp = volume_sign(a, b, c, p), sq = volume_sign(a, b, c, q);
-  if (sp * sq > 0 || (sp == 0 && sq == 0)) return false;
-  const int e0 = volume_sign(p, q, a, b), e1 = volume_sign(p, q, b, c), e2 = volume_sign(p, q, c, a);
-  return !((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0));
-}
-
 int cells_for(double length, double size) { return std::max(1, static_cast<int>(std::ceil(length / size - 1e-9))); }
 
 }  // namespace
@@ -207,9 +197,15 @@ void check_surface_mesh(const TriMesh& m, const std::string& path) {
   std::vector<std::size_t> order(T.size());
   for (std::size_t k = 0; k < T.size(); ++k) order[k] = k;
   std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return lo[x].x() < lo[y].x(); });
+  // Exact signs: the points of a generated or refined plane surface are coplanar only to rounding,
+  // and rounded signs made neighbouring triangles of one plane "intersect".
+  const auto exact = [](const Vec<3>& a, const Vec<3>& b, const Vec<3>& c, const Vec<3>& d) {
+    return volume_sign(a, b, c, d);
+  };
   auto edges_hit = [&](std::size_t s, std::size_t t) {
     for (int e = 0; e < 3; ++e)
-      if (segment_meets_triangle(P[T[s][e]], P[T[s][(e + 1) % 3]], P[T[t][0]], P[T[t][1]], P[T[t][2]])) return true;
+      if (segment_meets_triangle(P[T[s][e]], P[T[s][(e + 1) % 3]], P[T[t][0]], P[T[t][1]], P[T[t][2]], exact))
+        return true;
     return false;
   };
   for (std::size_t i = 0; i < order.size(); ++i) {

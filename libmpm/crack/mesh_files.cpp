@@ -194,9 +194,9 @@ TriMesh read_mesh_file(const std::filesystem::path& file, const std::string& key
   const std::string d = read_all(file, fail);
   TriMesh m;
   if (ext == ".stl" || ext == ".STL") {
-    m = is_binary_stl(d) ? binary_stl(d) : (d.rfind("solid", 0) == 0 ? ascii_stl(d, fail) : TriMesh{});
-    if (m.triangles.empty() && !is_binary_stl(d) && d.rfind("solid", 0) != 0)
-      fail("not an STL file (neither \"solid\" text nor a binary file of 84 + 50 n bytes)");
+    if (is_binary_stl(d)) m = binary_stl(d);
+    else if (d.rfind("solid", 0) == 0) m = ascii_stl(d, fail);
+    else fail("not an STL file (neither \"solid\" text nor a binary file of 84 + 50 n bytes)");
   } else if (ext == ".msh") {
     m = gmsh(d, fail);
   } else {

@@ -9,18 +9,12 @@
 
 #include "libmpm/core/error.hpp"
 #include "libmpm/core/json_reader.hpp"
+#include "libmpm/crack/crossing3d.hpp"
 #include "libmpm/crack/mesh3d.hpp"
 #include "libmpm/crack/mesh_files.hpp"
 
 namespace cleave::crack {
 namespace {
-
-// Sign of the volume of tetrahedron (a, b, c, d): positive when d lies on the side of the
-// counter-clockwise normal of (a, b, c).
-int orient3d(const Vec<3>& a, const Vec<3>& b, const Vec<3>& c, const Vec<3>& d) {
-  const double v = (b - a).cross(c - a).dot(d - a);
-  return (v > 0.0) - (v < 0.0);
-}
 
 // The surface of one form, as given (checked: crack/mesh3d.hpp) or generated at `size`.
 TriMesh read_form(const nlohmann::json& j, const std::string& form, const std::string& at, double L, double size) {
@@ -104,13 +98,9 @@ TriMesh read_form(const nlohmann::json& j, const std::string& form, const std::s
 
 bool segment_hits_triangle(const Vec<3>& p, const Vec<3>& q, const Vec<3>& a, const Vec<3>& b,
                            const Vec<3>& c) {
-  const int sp = orient3d(a, b, c, p), sq = orient3d(a, b, c, q);
-  if (sp * sq > 0 || (sp == 0 && sq == 0)) return false;  // same side, or in the plane
-  // The line p-q meets the plane inside the closed triangle iff it sees the three edges turning
-  // the same way (zero: through an edge or a vertex, which counts).
-  const int e0 = orient3d(p, q, a, b), e1 = orient3d(p, q, b, c), e2 = orient3d(p, q, c, a);
-  const bool has_neg = e0 < 0 || e1 < 0 || e2 < 0, has_pos = e0 > 0 || e1 > 0 || e2 > 0;
-  return !(has_neg && has_pos);
+  return segment_meets_triangle(p, q, a, b, c, [](const Vec<3>& a, const Vec<3>& b, const Vec<3>& c, const Vec<3>& d) {
+    return detail::sgn(signed_volume(a, b, c, d));  // rounded: peridynamics' bonds, as they always were
+  });
 }
 
 std::vector<Surface<3>> parse_surfaces3d(const nlohmann::json& cracks, const std::string& key_path,
