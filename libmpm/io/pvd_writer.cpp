@@ -22,20 +22,6 @@ std::string format17(double v) {
   return std::string(buf, r.ptr);
 }
 
-std::string xml_escape(const std::string& s) {
-  std::string r;
-  for (char c : s) {
-    switch (c) {
-      case '&': r += "&amp;"; break;
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '"': r += "&quot;"; break;
-      default: r += c;
-    }
-  }
-  return r;
-}
-
 std::string xml_unescape(const std::string& s) {
   static const std::pair<std::string_view, char> ents[] = {
       {"&amp;", '&'}, {"&lt;", '<'}, {"&gt;", '>'}, {"&quot;", '"'}, {"&apos;", '\''}};
@@ -96,7 +82,7 @@ void PvdIndex::write() const {
       "  <Collection>\n";
   for (const auto& [t, name] : entries_)
     xml += "    <DataSet timestep=\"" + format17(t) + "\" group=\"\" part=\"0\" file=\"" +
-           xml_escape(name) + "\"/>\n";
+           detail::xml_escape(name) + "\"/>\n";
   xml += "  </Collection>\n</VTKFile>\n";
   detail::write_atomically(file_, [&](std::ostream& out) {
     out.write(xml.data(), static_cast<std::streamsize>(xml.size()));

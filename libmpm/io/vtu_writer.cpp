@@ -50,10 +50,6 @@ void write_atomically(const std::filesystem::path& file,
   if (ec) fail("rename from " + tmp.string() + ": " + ec.message());
 }
 
-}  // namespace detail
-
-namespace {
-
 std::string xml_escape(const std::string& s) {
   std::string r;
   for (char c : s) {
@@ -67,6 +63,10 @@ std::string xml_escape(const std::string& s) {
   }
   return r;
 }
+
+}  // namespace detail
+
+namespace {
 
 // One DataArray: its XML attributes and where its bytes come from.
 struct Block {
@@ -165,7 +165,7 @@ void write_vtu(const std::filesystem::path& file, const PointSet& ps, const VtuF
   std::vector<std::size_t> offset_at;  // where in `xml` each declared array's offset goes
   auto declare = [&](const Block& b, const char* indent) {
     xml += indent;
-    xml += "<DataArray type=\"" + b.type + "\" Name=\"" + xml_escape(b.name) +
+    xml += "<DataArray type=\"" + b.type + "\" Name=\"" + detail::xml_escape(b.name) +
            "\" NumberOfComponents=\"" + std::to_string(b.components) + "\" format=\"appended\" offset=\"";
     offset_at.push_back(xml.size());
     xml += "\"/>\n";

@@ -5,6 +5,7 @@
 #pragma once
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <ostream>
 
 #include "libmpm/io/point_set.hpp"
@@ -31,6 +32,8 @@ namespace detail {
 // `file`. On any failure the temporary is removed and std::runtime_error names `file`.
 void write_atomically(const std::filesystem::path& file,
                       const std::function<void(std::ostream&)>& body);
+// `s` as XML attribute text (& < > " escaped): array and file names in the writers' XML.
+std::string xml_escape(const std::string& s);
 }  // namespace detail
 
 }  // namespace cleave::io
