@@ -3,7 +3,11 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <exception>
+#include <map>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "libmpm/core/error.hpp"
@@ -29,19 +33,59 @@ inline StepProblem advance(Stepper<Dim>& s, long n) {
   return {};
 }
 
-// The DCB's load-point opening (data/scenes/dcb_crack.json): the mean y displacement of the first
-// particle column (x0 = 0.5 mm) of the upper arm minus that of the lower arm.
-inline double dcb_load_point_opening(const Particles<2>& P) {
+// The DCB's load-point opening (data/scenes/dcb_crack.json, also as a 3D slab): the mean y
+// displacement of the first particle column (x0 = 0.5 mm) of the upper arm minus that of the lower arm.
+template <int Dim>
+inline double dcb_load_point_opening(const Particles<Dim>& P) {
   double top = 0, bottom = 0;
   int nt = 0, nb = 0;
   for (std::size_t p = 0; p < P.size(); ++p) {
-    const Vec<2> x0 = P.x[p] - P.u[p];
+    const Vec<Dim> x0 = P.x[p] - P.u[p];
     if (x0.x() > 1e-3) continue;
     (x0.y() > 0 ? top : bottom) += P.u[p].y();
     ++(x0.y() > 0 ? nt : nb);
   }
   return top / nt - bottom / nb;
 }
+
+// The crack patch test's pairing: for each particle of the half model, the particle of the full
+// model that started at the same place (positions rounded to 0.1 um); empty when one has none.
+template <int Dim>
+inline std::vector<std::size_t> twins(const Particles<Dim>& full, const Particles<Dim>& half) {
+  auto key = [](const Particles<Dim>& P, std::size_t p) {
+    std::array<long, Dim> k;
+    for (int d = 0; d < Dim; ++d) k[d] = std::lround((P.x[p][d] - P.u[p][d]) * 1e7);
+    return k;
+  };
+  std::map<std::array<long, Dim>, std::size_t> index;
+  for (std::size_t p = 0; p < full.size(); ++p) index[key(full, p)] = p;
+  std::vector<std::size_t> twin(half.size());
+  for (std::size_t p = 0; p < half.size(); ++p) {
+    const auto it = index.find(key(half, p));
+    if (it == index.end()) return {};
+    twin[p] = it->second;
+  }
+  return twin;
+}
+
+// The crack patch test's comparison: the largest difference between each particle of the half model
+// and its twin in the full one, positions relative to `length` and stresses relative to the half
+// model's largest stress component.
+template <int Dim>
+struct TwinDifference {
+  double x = 0, stress = 0;
+  void add(const Particles<Dim>& full, const Particles<Dim>& half, const std::vector<std::size_t>& twin, double length) {
+    double smax = 0, dx = 0, ds = 0;
+    for (std::size_t p = 0; p < half.size(); ++p) {
+      const std::size_t q = twin[p];
+      dx = std::max(dx, (full.x[q] - half.x[p]).cwiseAbs().maxCoeff());
+      ds = std::max(ds, (full.stress[q] - half.stress[p]).cwiseAbs().maxCoeff());
+      smax = std::max(smax, half.stress[p].cwiseAbs().maxCoeff());
+    }
+    x = std::max(x, dx / length);
+    if (smax > 0) stress = std::max(stress, ds / smax);
+  }
+};
 
 // The SceneError that f() throws; fails the test when it throws none or another exception.
 template <class F>

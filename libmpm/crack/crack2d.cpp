@@ -9,6 +9,7 @@
 
 #include "libmpm/core/error.hpp"
 #include "libmpm/core/json_reader.hpp"
+#include "libmpm/crack/contact_keys.hpp"
 
 namespace cleave::crack {
 
@@ -113,7 +114,10 @@ std::vector<Vec<2>> read_straight(const ObjectReader& r, double scale) {
   return out;
 }
 
-void read_contact(const ObjectReader& cr, Crack2D& c) {
+}  // namespace
+
+template <int Dim>
+void read_crack_contact(const ObjectReader& cr, ExplicitCrack<Dim>& c) {
   const ObjectReader r(cr["contact"], cr.at("contact"), {"law", "mu", "detection", "v_sep", "v_contact"});
   const std::string law = r.string("law");
   const ContactLaws& laws = ContactLaws::instance();
@@ -147,8 +151,9 @@ void read_contact(const ObjectReader& cr, Crack2D& c) {
     throw SceneError(r.at("detection"), "unknown contact detection \"" + det + "\"; valid: volume, displacement");
   }
 }
+template void read_crack_contact<2>(const ObjectReader&, ExplicitCrack<2>&);
+template void read_crack_contact<3>(const ObjectReader&, ExplicitCrack<3>&);
 
-}  // namespace
 
 bool segments_intersect(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c, const Vec<2>& d) {
   const int o1 = area_sign(a, b, c), o2 = area_sign(a, b, d);
@@ -185,7 +190,7 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
     if (!has_points && !has_straight)
       throw SceneError(r.at("points"), "missing (give \"points\", or \"from\", \"to\" and \"segment_length\")");
     c.points = has_points ? read_points(r, length_scale) : read_straight(r, length_scale);
-    if (r.has("contact")) read_contact(r, c);
+    if (r.has("contact")) read_crack_contact(r, c);
     c.tips = r.string_or("tips", "auto");
     if (c.tips != "auto" && c.tips != "both" && c.tips != "start" && c.tips != "end" && c.tips != "none")
       throw SceneError(r.at("tips"), "unknown value \"" + c.tips + "\"; valid: auto, both, start, end, none");

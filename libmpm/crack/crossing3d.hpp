@@ -87,6 +87,10 @@ inline int volume_sign(const Vec<3>& a, const Vec<3>& b, const Vec<3>& c, const 
   constexpr double kBound = (7.0 + 56.0 * kEps) * kEps;
   const double err = kBound * perm;
   if (det > err || -det > err) return detail::sgn(det);
+  // Four points with one coordinate in common lie in that axis plane: exactly coplanar. (The common
+  // degenerate case: nodes on a crack laid on a node plane. Much cheaper than the expansions.)
+  for (int k = 0; k < 3; ++k)
+    if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k]) return 0;
   return detail::volume_sign_exact(a, b, c, d);
 }
 
@@ -143,14 +147,18 @@ inline TriangleHit triangle_crossing(const Vec<3>& particle, const Vec<3>& node,
   return TriangleHit::Crossed;
 }
 
-// Whole-surface crossing (points, triangles: point indices, consistently oriented) WITHOUT extent
-// screening, by the rules at the top of this file. When `triangle` is given, it receives one
+// Crossing of the particle-node line with the triangles triangles[ids[0]], ..., triangles[ids[n-1]]
+// of a surface, WITHOUT extent screening, by the rules at the top of this file. Exact for the whole
+// surface when the triangles left out cannot meet the closed segment (the MPM crack fields pass
+// those whose bounding boxes meet the particle-node box). `triangle` (optional) receives one
 // crossed triangle on the returned side (the crack normal of contact is taken from it).
-inline Side triangle_mesh_crossing(const Vec<3>* points, const std::array<int32_t, 3>* triangles, std::size_t n,
-                                   const Vec<3>& particle, const Vec<3>& node, std::size_t* triangle = nullptr) {
+template <class Ids>
+Side triangle_list_crossing(const Vec<3>* points, const std::array<int32_t, 3>* triangles, const Ids& ids,
+                            std::size_t n, const Vec<3>& particle, const Vec<3>& node, std::size_t* triangle = nullptr) {
   int count = 0, net = 0, node_side = 0;
   std::size_t tri_above = 0, tri_below = 0, tri_node = 0;
-  for (std::size_t t = 0; t < n; ++t) {
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t t = static_cast<std::size_t>(ids[k]);
     const auto& T = triangles[t];
     int side = 0;
     const TriangleHit hit = triangle_crossing(particle, node, points[T[0]], points[T[1]], points[T[2]], side);
@@ -169,6 +177,16 @@ inline Side triangle_mesh_crossing(const Vec<3>* points, const std::array<int32_
   if (count % 2 == 0) return Side::None;
   if (triangle) *triangle = net > 0 ? tri_above : tri_below;
   return net > 0 ? Side::Above : Side::Below;
+}
+
+// Whole-surface crossing (points, triangles: point indices, consistently oriented) WITHOUT extent
+// screening: triangle_list_crossing over every triangle.
+inline Side triangle_mesh_crossing(const Vec<3>* points, const std::array<int32_t, 3>* triangles, std::size_t n,
+                                   const Vec<3>& particle, const Vec<3>& node, std::size_t* triangle = nullptr) {
+  struct All {
+    std::size_t operator[](std::size_t k) const { return k; }
+  };
+  return triangle_list_crossing(points, triangles, All{}, n, particle, node, triangle);
 }
 
 }  // namespace cleave::crack

@@ -57,4 +57,11 @@ struct ExplicitCrack : Surface<Dim>, FrontsOf<Dim> {
   // crack whose extent was never computed screens every pair out; call it after moving the points.
 };
 
+// 3D Subtask 1: can the particle-node line touch the surface? The closed box spanned by particle and
+// node meets the closed extent (exact: comparisons only; the 2D one is in crack2d.hpp).
+inline bool extent_overlaps(const Surface<3>& c, const Vec<3>& particle, const Vec<3>& node) {
+  return (particle.cwiseMin(node).array() <= c.hi.array()).all() &&
+         (particle.cwiseMax(node).array() >= c.lo.array()).all();
+}
+
 }  // namespace cleave::crack

@@ -13,8 +13,9 @@
 
 namespace cleave::crack {
 
-// Each entry is an object with "name", optional "element_size" (scene length unit) and exactly
-// one of
+// Each entry is an object with "name", optional "element_size" (scene length unit), the MPM keys
+// "contact" and "tips" (read by parse_cracks3d, crack3d.hpp; other methods ignore them, as for 2D
+// polylines) and exactly one of
 //   "triangles": [[[x,y,z],[x,y,z],[x,y,z]], ...]   triangles vertex by vertex (shared ones merged)
 //   "quad": [p0, p1, p2, p3]                       split into (p0,p1,p2) and (p0,p2,p3)
 //   "mesh": {"points": [[x,y,z], ...], "triangles": [[i,j,k], ...]}   an indexed mesh

@@ -1,5 +1,6 @@
-// Multiple velocity fields at nodes near 2D explicit cracks (seed 002, §2.1-2.2 and Appendix A),
-// with crack contact and crack translation (Task 7).
+// Multiple velocity fields at nodes near explicit cracks: 2D polylines (seed 002, §2.1-2.2 and
+// Appendix A) and 3D triangulated surfaces (seed 000, Appendices A-B), with crack contact and crack
+// motion (Task 7); one code path, the dimension's geometry in the layers below.
 //
 // Every particle-node pair has a field key: the cracks its connecting line crosses and the side
 // the particle is on (at most two crossings, so two cracks may meet at a node). Key 0 (no
@@ -60,7 +61,8 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   CrackFields(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin) : Base(m, grid, kin) {
     area0_.resize(P_.size());
     for (const auto& b : m.bodies)
-      for (std::size_t p = b.first; p < b.first + b.count; ++p) area0_[p] = P_.volume0[p] / b.thickness;
+      for (std::size_t p = b.first; p < b.first + b.count; ++p)
+        area0_[p] = Dim == 2 ? P_.volume0[p] / b.thickness : P_.volume0[p];
     for (const auto& c : cracks_) {
       if (c.contact_law == Law::None) continue;
       (c.detection == crack::Detection::Volume ? need_volume_ : need_disp_) = true;
@@ -152,11 +154,15 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
     const V mx = mp * P_.x[p];
     V mu = V::Zero();
     double mrot = 0.0;
-    if constexpr (disp) mu = mp * P_.u[p], mrot = mp * P_.rotation[p];
+    if constexpr (disp) {
+      mu = mp * P_.u[p];
+      if constexpr (Dim == 2) mrot = mp * P_.rotation[p];
+    }
     double area = 0.0;
     if constexpr (volume) {
       const auto& e = P_.strain[p];
       area = area0_[p] * (1.0 + e[0]) * (1.0 + e[1]);  // eq. 25
+      if constexpr (Dim == 3) area *= 1.0 + e[2];  // (3D: the volume)
     }
     for_each_pair_weight(k, s, [&](int64_t n, int32_t x, double w) {
       const int32_t b = node_block_[n];
@@ -268,7 +274,8 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   // acceleration in the last step, each node's from the field the particle uses there.
   template <class Accel>
   std::vector<crack::TipRecord> tip_parameters(const Model<Dim>& m, const crack::TipSettings& ts, Accel&& accel) const {
-    return evaluate_crack_tips<SF>(m, ts, std::forward<Accel>(accel));
+    if constexpr (Dim == 3) return {};  // J and K along 3D fronts: not built yet
+    else return evaluate_crack_tips<SF>(m, ts, std::forward<Accel>(accel));
   }
 
   using Base::contact;      // crack contact (Tasks 2 and 6c; Task 4 in update_momenta)
@@ -282,64 +289,8 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   using Base::near_flag_, Base::near_index_, Base::near_st_, Base::node_block_, Base::P_, Base::pair_slot_;
   using Base::rot_, Base::side_fields_, Base::side_valid_, Base::slot_any_, Base::volume_, Base::xkin_;
 
-  std::vector<double> area0_;  // per particle: its area at zero strain (eq. 25)
+  std::vector<double> area0_;  // per particle: its area (2D) or volume (3D) at zero strain (eq. 25)
   bool need_volume_ = false, need_disp_ = false;  // some crack detects contact by volume / displacement
-};
-
-// 3D crack fields are not built yet (triangulated crack surfaces: issue 16); the scene reader refuses
-// cracks in 3D scenes ("cracks": "3D crack surfaces are not supported yet"), so this is never
-// constructed. It holds the stepper's one code path for both dimensions: every member the stepper
-// calls exists, and 3D CRAMP replaces this class with the layers above built for triangles.
-template <class SF>
-class CrackFields<3, SF> {
-  using V = Vec<3>;
-  using St = Stencil<3, SF>;
-
- public:
-  struct NearTest {
-    uint8_t in_box(const V&) const { return 0; }
-    uint8_t operator()(const V&) const { return 0; }
-  };
-  CrackFields(Model<3>&, GridFields<3>&, std::vector<NodeKinematics<3>>&) {
-    throw std::logic_error("MPM crack fields: 3D crack surfaces are not built yet");
-  }
-  void prepare_index() {}
-  NearTest near_test() const { return {}; }
-  uint8_t* near_flags() { return nullptr; }
-  const int32_t* near_index() const { return nullptr; }
-  const std::vector<int32_t>& near_list() const { return near_; }
-  void prepare_fields(bool) {}
-  const St& stencil(std::size_t) const { return st_; }
-  template <class F>
-  void for_each_pair(std::size_t, const St&, F&&) const {}
-  template <class F>
-  void for_each_pair_weight(std::size_t, const St&, F&&) const {}
-  void extrapolate(std::size_t, const St&) {}
-  NodeKinematics<3>& kin(int64_t, int32_t) { return kin_; }
-  const NodeKinematics<3>& kin(int64_t, int32_t) const { return kin_; }
-  V& force(int64_t, int32_t) { return v_; }
-  V& momentum(int64_t, int32_t) { return v_; }
-  double mass(int64_t, int32_t) const { return 0.0; }
-  int32_t field_of(std::size_t, int64_t, const V&) const { return -1; }
-  void body_force_and_damping(const V&, double) {}
-  void apply_momentum_conditions(const GridConditions<3>&) {}
-  double zero_prescribed_forces(const GridConditions<3>&) { return 0.0; }
-  void update_momenta(double) {}
-  void clear_momenta() {}
-  void nodal_velocities() {}
-  void contact(double) {}
-  void move_cracks(double) {}
-  long take_overflow() { return 0; }
-  template <class Accel>
-  std::vector<crack::TipRecord> tip_parameters(const Model<3>&, const crack::TipSettings&, Accel&&) const {
-    return {};
-  }
-
- private:
-  std::vector<int32_t> near_;
-  St st_{};
-  NodeKinematics<3> kin_{V::Zero(), V::Zero()};
-  V v_ = V::Zero();
 };
 
 }  // namespace cleave

@@ -10,6 +10,9 @@
 #include "libmpm/core/error.hpp"
 #include "libmpm/core/json_reader.hpp"
 #include "libmpm/crack/crack2d.hpp"
+#include "libmpm/crack/crack3d.hpp"
+#include "libmpm/crack/fronts.hpp"
+#include "libmpm/crack/mesh3d.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/method/describe.hpp"
 
@@ -198,12 +201,106 @@ crack::TipSettings read_tip_settings(const json& scene, Model<2>& m, double time
   return s;
 }
 
+// The material of a 3D model as a point test, from the particles' domains (the cube of each
+// particle's spacing about it, from its volume), binned by grid cell; a point on the body's face
+// (a surface crack's edge placed on it) is outside.
+class Material3 {
+ public:
+  explicit Material3(const Model<3>& m) : m_(m), half_(m.particles.size()) {
+    const auto& P = m.particles;
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      half_[p] = 0.5 * std::cbrt(P.volume0[p]);
+      bins_.push_back({cell(P.x[p]), static_cast<int32_t>(p)});
+    }
+    std::sort(bins_.begin(), bins_.end());
+  }
+  // x is inside when the material surrounds it: each of the eight points x + eps (+-1, +-1, +-1)
+  // lies in a particle's open domain (so a point on the face shared by two particles' domains is
+  // inside, one on the body's face is not).
+  bool operator()(const Vec<3>& x) const {
+    const double eps = 1e-6 * m_.grid.h;
+    for (int k = 0; k < 8; ++k)
+      if (!within(x + eps * Vec<3>(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1), 0.0)) return false;
+    return true;
+  }
+  // Is x within `reach` (max-norm) of the material?
+  bool near(const Vec<3>& x, double reach) const { return within(x, reach); }
+
+ private:
+  // Does some particle's open domain grown by reach hold x?
+  bool within(const Vec<3>& x, double reach) const {
+    const auto& P = m_.particles;
+    const double h = m_.grid.h;
+    const int r = 1 + static_cast<int>(std::ceil(reach / h));
+    for (int di = -r; di <= r; ++di)
+      for (int dj = -r; dj <= r; ++dj)
+        for (int dk = -r; dk <= r; ++dk) {
+          const int64_t c = cell(x + h * Vec<3>(di, dj, dk));
+          auto it = std::lower_bound(bins_.begin(), bins_.end(), std::pair<int64_t, int32_t>{c, -1});
+          for (; it != bins_.end() && it->first == c; ++it)
+            if (((x - P.x[it->second]).cwiseAbs().array() < half_[it->second] + reach).all()) return true;
+        }
+    return false;
+  }
+  int64_t cell(const Vec<3>& x) const {
+    int64_t c = 0;
+    for (int d = 0; d < 3; ++d) {
+      const int64_t n = m_.grid.nodes[d] + 2;  // one cell of room either side of the grid
+      const int64_t i = std::clamp<int64_t>(static_cast<int64_t>(std::floor((x[d] - m_.grid.origin[d]) / m_.grid.h)) + 1, 0, n - 1);
+      c = c * n + i;
+    }
+    return c;
+  }
+  const Model<3>& m_;
+  std::vector<double> half_;
+  std::vector<std::pair<int64_t, int32_t>> bins_;
+};
+
+// 3D: each surface clipped to the material (a surface crack's part outside the body goes, but for a
+// band of a cell; its edges there are mouths), checked against the grid, and its fronts found (boundary edges inside the
+// material) with their frames; "tips" other than "none" makes every front a crack tip.
+void build_cracks3d(Model<3>& m) {
+  const double h = m.grid.h;
+  const Material3 inside(m);
+  const Vec<3> lo = m.grid.origin, hi = m.grid.upper();
+  for (auto& c : m.cracks) {
+    const std::string path = "cracks[" + std::to_string(c.id) + "]";
+    crack::TriMesh mesh{c.points, c.simplices};
+    const std::size_t given = mesh.triangles.size();
+    // Kept: every triangle with a vertex within a cell of the material. The nodes up to a cell
+    // outside a body receive mass from its particles; a crack that ended at the body's face would
+    // leave those nodes joining the faces (2D keeps its polylines whole for the same reason).
+    mesh = crack::clip_to(mesh, [&](const Vec<3>& x) { return inside.near(x, h); });
+    if (mesh.triangles.empty())
+      throw SceneError(path, "crack '" + c.name + "' lies outside every body (none of its " + std::to_string(given) +
+                                 " triangles has a vertex within a cell of the material)");
+    if (mesh.triangles.size() < given)
+      m.warnings.push_back("crack '" + c.name + "': " + std::to_string(given - mesh.triangles.size()) + " of its " +
+                           std::to_string(given) + " triangles lie more than a cell outside the material and were "
+                           "dropped");
+    c.points = mesh.points;
+    c.simplices = mesh.triangles;
+    for (std::size_t i = 0; i < c.points.size(); ++i) {
+      const Vec<3>& x = c.points[i];
+      if (!((x.array() > lo.array()).all() && (x.array() < hi.array()).all()))
+        throw SceneError(path, "crack '" + c.name + "': point " + std::to_string(i) + " " + position_text<3>(x) +
+                                   " lies outside the grid; enlarge the grid");
+    }
+    c.fronts = crack::crack_fronts(c, inside);
+    c.tip.assign(c.fronts.size(), c.tips == "none" ? 0 : 1);
+    c.above = c.below = c.points;
+    c.update_extent();
+  }
+}
+
 }  // namespace
 
 template <int Dim>
 void read_cracks(const json& scene, double length, Model<Dim>& m) {
   if constexpr (Dim == 3) {
-    throw SceneError("cracks", "3D crack surfaces are not supported yet (cracks are 2D polylines)");
+    // Crack particles at half a cell, as the seed's (its §4: "crack particles ... about half the cell size").
+    m.cracks = crack::parse_cracks3d(scene["cracks"], "cracks", length, {0.5 * m.grid.h, true});
+    build_cracks3d(m);
   } else {
     m.cracks = crack::parse_cracks(scene["cracks"], "cracks", length);
     check_cracks(m);

@@ -7,8 +7,10 @@
 
 namespace cleave {
 
-// "cracks": the 2D polylines (crack::parse_cracks), each inside the grid with room for its nodes and
-// touching a body; "tips": "auto" resolved against the particles. 3D: an error (not built yet).
+// "cracks": 2D polylines (crack::parse_cracks), each inside the grid with room for its nodes and
+// touching a body, "tips": "auto" resolved against the particles; 3D surfaces (crack::parse_cracks3d)
+// meshed at half a cell, clipped to the material but for a band of a cell, inside the grid, with
+// their fronts.
 template <int Dim>
 void read_cracks(const nlohmann::json& scene, double length, Model<Dim>& m);
 

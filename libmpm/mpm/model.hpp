@@ -46,7 +46,7 @@ struct Model : RunSettings {
   std::vector<std::unique_ptr<Material<Dim>>> materials;
   std::vector<Body> bodies;
   Particles<Dim> particles;
-  std::vector<crack::ExplicitCrack<Dim>> cracks;  // explicit cracks (none in uncracked scenes; 3D: not built yet)
+  std::vector<crack::ExplicitCrack<Dim>> cracks;  // explicit cracks (none in uncracked scenes)
   std::optional<crack::TipSettings> crack_tips;  // J and K at the crack tips, when the scene asks
   std::vector<TractionLoad<Dim>> tractions;
   Vec<Dim> gravity = Vec<Dim>::Zero();

@@ -42,7 +42,7 @@ class MpmMethod final : public Method<Dim> {
                          m.shape_function == ShapeFunctionKind::UGimp ? "uGIMP" : "linear", scheme_name(m.scheme), m.dt,
                          m.stable_dt, static_cast<long>(std::ceil(m.end_time / m.dt - 1e-9)), m.end_time));
     for (const auto& c : m.cracks)
-      out.push_back(format("crack '%s': %zu segments, contact %s%s, %s detection", c.name.c_str(), c.points.size() - 1,
+      out.push_back(format("crack '%s': %s, contact %s%s, %s detection", c.name.c_str(), crack_size(c).c_str(),
                            crack::contact_law_name(c.contact_law),
                            c.contact_law == crack::ContactLaw::Friction
                                ? (" mu=" + std::to_string(c.friction)).c_str() : "",
@@ -59,6 +59,17 @@ class MpmMethod final : public Method<Dim> {
                            m.output.tip_interval));
     }
     return out;
+  }
+
+  static std::string crack_size(const crack::ExplicitCrack<Dim>& c) {
+    if constexpr (Dim == 3) {
+      int tips = 0;
+      for (auto t : c.tip) tips += t;
+      return format("%zu triangles, %zu points, %zu fronts (%d tips)", c.simplices.size(), c.points.size(),
+                    c.fronts.size(), tips);
+    } else {
+      return format("%zu segments", c.points.size() - 1);
+    }
   }
 
   StepProblem step() override {

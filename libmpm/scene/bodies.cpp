@@ -1,5 +1,7 @@
 #include "libmpm/scene/bodies.hpp"
 
+#include <Eigen/Geometry>
+
 namespace cleave::scene {
 
 template <int Dim>
@@ -17,18 +19,19 @@ void BodySpec<Dim>::add_rotation(const UnitSystem& units, double length, const V
     if (r.has("rotation_center")) throw SceneError(r.at("rotation_center"), "only with angular_velocity");
     return;
   }
-  if constexpr (Dim == 3) {
-    throw SceneError(r.at("angular_velocity"), "only for 2D bodies (a rotation rate about z)");
+  // Rigid rotation about the centre: v = v0 + w x (x - c); w a rate about z in 2D, a vector in 3D.
+  Vec<Dim> c = Vec<Dim>::Zero();
+  if (r.has("rotation_center")) {
+    c = r.vec<Dim>("rotation_center", length);
   } else {
-    // Rigid rotation about the centre: v = v0 + w x (x - c).
+    for (std::size_t p = 0; p < n; ++p) c += x[p];
+    c /= static_cast<double>(n);
+  }
+  if constexpr (Dim == 3) {
+    const Vec<3> w = r.vec<3>("angular_velocity", units.factor(Quantity::InverseTime));
+    for (std::size_t p = 0; p < n; ++p) v[p] += w.cross(x[p] - c);
+  } else {
     const double w = r.number("angular_velocity", units.factor(Quantity::InverseTime));
-    Vec<2> c = Vec<2>::Zero();
-    if (r.has("rotation_center")) {
-      c = r.vec<2>("rotation_center", length);
-    } else {
-      for (std::size_t p = 0; p < n; ++p) c += x[p];
-      c /= static_cast<double>(n);
-    }
     for (std::size_t p = 0; p < n; ++p) v[p] += w * Vec<2>(-(x[p].y() - c.y()), x[p].x() - c.x());
   }
 }

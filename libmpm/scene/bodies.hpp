@@ -38,7 +38,7 @@ struct BodySpec {
   ObjectReader reader() const;
 
   // Adds the body's rigid rotation to the velocities v[0..n) of its points x[0..n) (scene keys
-  // "angular_velocity", 2D only, about "rotation_center" or else the points' centroid):
+  // "angular_velocity" (2D: a rate about z; 3D: a vector), about "rotation_center" or else the points' centroid):
   // v += w x (x - c). No-op when the body does not rotate.
   void add_rotation(const UnitSystem& units, double length, const Vec<Dim>* x, Vec<Dim>* v, std::size_t n) const;
 };

@@ -4,7 +4,8 @@
 // connecting line crosses and the particle's side of each, at most two) with the segment crossed.
 // Only the near particles are classified: the spatial index guarantees that every other particle's
 // lines cross nothing.
-// 2D only: the crossing test is that of crack::Crack2D polylines (crack/crossing.hpp).
+// 2D: the crossing test of polylines (crack/crossing.hpp); 3D: that of triangle meshes
+// (crack/crossing3d.hpp, seed 000 Appendix A), on the triangles of the index entries.
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -12,6 +13,7 @@
 
 #include "libmpm/core/parallel.hpp"
 #include "libmpm/crack/crack2d.hpp"
+#include "libmpm/crack/crossing3d.hpp"
 #include "libmpm/mpm/crack_fields/spatial_index.hpp"
 #include "libmpm/mpm/model.hpp"
 #include "libmpm/mpm/stencil.hpp"
@@ -20,7 +22,6 @@ namespace cleave::crack_fields {
 
 template <int Dim, class SF>
 class Classification : public SpatialIndex<Dim, SF> {
-  static_assert(Dim == 2, "crack fields: 2D only (line crossing of crack::Crack2D polylines)");
   using Base = SpatialIndex<Dim, SF>;
   using St = Stencil<Dim, SF>;
   using V = Vec<Dim>;
@@ -31,7 +32,7 @@ class Classification : public SpatialIndex<Dim, SF> {
  protected:
   using typename Base::Entry;
   using Base::cell_head_, Base::cell_of, Base::cracks_, Base::entries_, Base::G_, Base::inv_h_;
-  using Base::node_position, Base::stride_;
+  using Base::node_position, Base::stride_, Base::tri_hi_, Base::tri_ids_, Base::tri_lo_;
   static constexpr uint32_t kOverflow = crack::kFieldKeyOverflow;  // a line crossing three or more cracks
 
   explicit Classification(Model<Dim>& m) : Base(m), P_(m.particles) {
@@ -91,12 +92,43 @@ class Classification : public SpatialIndex<Dim, SF> {
   // Adds to b the crossing of the line xp -> xn with segments lo..hi of crack `crack`, if any;
   // false when that is a third crossed crack (the key overflows).
   bool add_crossing(crack::FieldKeyBuilder& b, int32_t crack, int32_t lo, int32_t hi, const V& xp, const V& xn) const {
-    const crack::Crack2D& c = cracks_[crack];
-    if (!crack::extent_overlaps(c, xp, xn)) return true;  // Subtask 1
-    std::size_t s = 0;
+    if constexpr (Dim == 3) {
+      return add_crossing3(b, crack, tri_ids_.data() + lo, hi - lo + 1, xp, xn);
+    } else {
+      const crack::ExplicitCrack<Dim>& c = cracks_[crack];
+      if (!crack::extent_overlaps(c, xp, xn)) return true;  // Subtask 1
+      std::size_t s = 0;
+      const crack::Side side =
+          crack::polyline_crossing(c.points.data() + lo, static_cast<std::size_t>(hi - lo + 2), xp, xn, &s);
+      return side == crack::Side::None || b.add(crack, side, lo + static_cast<int32_t>(s));
+    }
+  }
+  // 3D: the same with the n triangles ids[0 .. n-1] of the crack; the segment slot gets the triangle.
+  // Only the triangles whose boxes meet the line's box are tested (exact: the others cannot meet it).
+  bool add_crossing3(crack::FieldKeyBuilder& b, int32_t crack, const int32_t* ids, int n, const V& xp,
+                     const V& xn) const {
+    const crack::ExplicitCrack<Dim>& c = cracks_[crack];
+    if (n <= 0 || !crack::extent_overlaps(c, xp, xn)) return true;
+    const V lo = xp.cwiseMin(xn), hi = xp.cwiseMax(xn);
+    const std::vector<V>&tlo = tri_lo_[crack], &thi = tri_hi_[crack];
+    int32_t near[64];
+    int m = 0;
+    for (int k = 0; k < n && m <= 64; ++k) {
+      const int32_t t = ids[k];
+      if ((thi[t].array() >= lo.array()).all() && (tlo[t].array() <= hi.array()).all()) {
+        if (m < 64) near[m] = t;
+        ++m;
+      }
+    }
+    if (m == 0) return true;
+    const bool narrowed = m <= 64;
+    std::size_t t = 0;
     const crack::Side side =
-        crack::polyline_crossing(c.points.data() + lo, static_cast<std::size_t>(hi - lo + 2), xp, xn, &s);
-    return side == crack::Side::None || b.add(crack, side, lo + static_cast<int32_t>(s));
+        narrowed ? crack::triangle_list_crossing(c.points.data(), c.simplices.data(), near, static_cast<std::size_t>(m),
+                                                 xp, xn, &t)
+                 : crack::triangle_list_crossing(c.points.data(), c.simplices.data(), ids, static_cast<std::size_t>(n),
+                                                 xp, xn, &t);
+    return side == crack::Side::None || b.add(crack, side, static_cast<int32_t>(t));
   }
 
   // An index entry narrowed for one particle: segments lo..hi of the crack (none when lo > hi).
@@ -128,6 +160,10 @@ class Classification : public SpatialIndex<Dim, SF> {
     pair_seg_.resize(nn * N * 2);
     near_st_.resize(nn);
     key_any_.resize(nn);
+    if constexpr (Dim == 3) classify_pairs3(nn);
+    else classify_pairs2(nn);
+  }
+  void classify_pairs2(const std::size_t nn) {
 #pragma omp parallel for schedule(static) if (nn >= 512)
     for (std::size_t k = 0; k < nn; ++k) {
       const std::size_t p = static_cast<std::size_t>(near_[k]);
@@ -188,6 +224,83 @@ class Classification : public SpatialIndex<Dim, SF> {
         if (w == 0.0) return;  // no contribution: no field needed
         pair_key_[q] = nsub >= 0 ? classify_sub(sub, nsub, xp, xn, &pair_seg_[2 * q])
                                  : classify_in_cell(cell, xp, xn, &pair_seg_[2 * q]);
+      });
+    }
+  }
+
+  // 3D: per near particle, each index entry of its cell narrowed to the triangles whose bounding
+  // boxes meet the closed box B of the particle and its stencil nodes (exact, as in 2D: a triangle
+  // apart from B cannot meet a particle-node line, and the crossing rules are per triangle), then
+  // every pair classified on that short list.
+  void classify_pairs3(const std::size_t nn) {
+    constexpr int kMaxTri = 512;  // triangles per particle kept; more: the full entries
+#pragma omp parallel for schedule(static) if (nn >= 512)
+    for (std::size_t k = 0; k < nn; ++k) {
+      const std::size_t p = static_cast<std::size_t>(near_[k]);
+      const V xp = P_.x[p];
+      St& s = near_st_[k];
+      s.eval(G_, stride_, inv_h_, xp, P_.half_width[p]);
+      const int64_t cell = cell_of(xp);
+      int64_t i0[3];
+      int64_t r = s.base;
+      for (int d = 0; d < 3; ++d) i0[d] = r / static_cast<int64_t>(stride_[d]), r %= static_cast<int64_t>(stride_[d]);
+      double nc[3][St::K];
+      for (int a = 0; a < St::K; ++a) {
+        const V xa = node_position(i0[0] + a, i0[1] + a, i0[2] + a);
+        for (int d = 0; d < 3; ++d) nc[d][a] = xa[d];
+      }
+      V lo = xp, hi = xp;
+      for (int d = 0; d < 3; ++d)
+        for (int a = 0; a < St::K; ++a) lo[d] = std::min(lo[d], nc[d][a]), hi[d] = std::max(hi[d], nc[d][a]);
+      int32_t ids[kMaxTri];
+      SubRange sub[kMaxSub];  // per entry: its triangles in ids[lo .. hi]
+      int nsub = 0, nid = 0;
+      for (int32_t e = cell_head_[cell]; e >= 0; e = entries_[e].next) {
+        const Entry& en = entries_[e];
+        if (nsub == kMaxSub) {
+          nsub = -1;
+          break;
+        }
+        const int32_t first = nid;
+        if ((en.hi.array() >= lo.array()).all() && (en.lo.array() <= hi.array()).all()) {
+          for (int32_t a = en.seg_lo; a <= en.seg_hi && nsub >= 0; ++a) {
+            const V& tlo = tri_lo_[en.crack][tri_ids_[a]];
+            const V& thi = tri_hi_[en.crack][tri_ids_[a]];
+            if (!((thi.array() >= lo.array()).all() && (tlo.array() <= hi.array()).all())) continue;
+            if (nid == kMaxTri) {
+              nsub = -1;
+              break;
+            }
+            ids[nid++] = tri_ids_[a];
+          }
+          if (nsub < 0) break;
+        }
+        sub[nsub++] = {en.crack, first, nid - 1};
+      }
+      const bool any = nsub < 0 || nid > 0;
+      key_any_[k] = any;
+      if (!any) {
+        std::fill_n(&pair_key_[k * N], N, 0u);
+        continue;
+      }
+      int j = 0;
+      s.for_each_weight([&](int64_t, double w) {
+        const std::size_t q = k * N + j;
+        const V xn(nc[0][j / (St::K * St::K)], nc[1][(j / St::K) % St::K], nc[2][j % St::K]);
+        ++j;
+        pair_key_[q] = 0;
+        if (w == 0.0) return;
+        if (nsub < 0) {
+          pair_key_[q] = classify_in_cell(cell, xp, xn, &pair_seg_[2 * q]);
+          return;
+        }
+        crack::FieldKeyBuilder b;
+        for (int e = 0; e < nsub; ++e)
+          if (!add_crossing3(b, sub[e].crack, ids + sub[e].lo, sub[e].hi - sub[e].lo + 1, xp, xn)) {
+            pair_key_[q] = kOverflow;
+            return;
+          }
+        pair_key_[q] = b.key(&pair_seg_[2 * q]);
       });
     }
   }

@@ -3,8 +3,9 @@
 // fields whose keys differ in exactly one crack: detection (the crack's nodal-volume or
 // nodal-displacement indicator, overridden where the tracked surfaces close), then the crack's law
 // (stick, frictionless or Coulomb friction) as a momentum exchange between the two fields.
-// 2D only: the nodal volume is compared with a cell's area, and the tracked surfaces are those of
-// crack::Crack2D polylines.
+// The nodal volume is compared with a cell's area (2D) or volume (3D). 3D particles carry no
+// rotation, so 3D displacement detection compares the fields' displacements without the rotation
+// correction of 2D.
 #pragma once
 #include <atomic>
 #include <cmath>
@@ -19,7 +20,6 @@ namespace cleave::crack_fields {
 
 template <int Dim, class SF>
 class CrackContact : public CrackMotion<Dim, SF> {
-  static_assert(Dim == 2, "crack fields: 2D only (cell area, crack::Crack2D surfaces)");
   using Base = CrackMotion<Dim, SF>;
   using V = Vec<Dim>;
 
@@ -30,7 +30,8 @@ class CrackContact : public CrackMotion<Dim, SF> {
   // Every multi-field node on its own (it changes only its own fields' momenta and forces): in
   // parallel from kParallelPoints nodes.
   void contact(double dt, bool back_compute = false) {
-    const double cell_volume = G_.h * G_.h;
+    double cell_volume = G_.h * G_.h;
+    if constexpr (Dim == 3) cell_volume *= G_.h;
     update_spins();
     flag_closing_surfaces(dt);
     const std::size_t nb = block_node_.size();
@@ -52,7 +53,7 @@ class CrackContact : public CrackMotion<Dim, SF> {
           const double len = nrm.norm();
           if (!(len > 0.0)) continue;
           nrm /= len;  // from above to below
-          const crack::Crack2D& c = cracks_[crack];
+          const crack::ExplicitCrack<Dim>& c = cracks_[crack];
           const Law law = c.contact_law;
           if (law == Law::None) continue;
           V& pa = momentum(n, xa);
@@ -60,7 +61,7 @@ class CrackContact : public CrackMotion<Dim, SF> {
           // The fields' velocities are those of their mass centres, which lie on either side of the
           // crack: in a body spinning at omega they differ by omega x (ca - cb) while the faces stay
           // together. The faces' relative velocity is what remains after the crack's own spin (crack_spin).
-          const double w = spin_[crack];
+          const Spin w = spin_[crack];
           const V ca = field_centre(n, xa), cb = field_centre(n, xb);
           const V rigid = cross(w, ca - cb);
           const V dv = pa / ma - pb / mb - rigid;
@@ -88,10 +89,12 @@ class CrackContact : public CrackMotion<Dim, SF> {
             double mn = grid_.mass[n];
             for (int s = 0; s < block_nslots_[b]; ++s) mn += mass_[b * kExtra + s];
             const double th = mn > 0.0 ? rot_[b] / mn : 0.0;
-            if (th != 0.0) {
-              const V d0 = (ca - ua) - (cb - ub);  // Xa - Xb
-              const double cs = std::cos(th), sn = std::sin(th);
-              gap += d0 - V(cs * d0.x() - sn * d0.y(), sn * d0.x() + cs * d0.y());
+            if constexpr (Dim == 2) {  // (3D particles carry no rotation: the gap as it is)
+              if (th != 0.0) {
+                const V d0 = (ca - ua) - (cb - ub);  // Xa - Xb
+                const double cs = std::cos(th), sn = std::sin(th);
+                gap += d0 - V(cs * d0.x() - sn * d0.y(), sn * d0.x() + cs * d0.y());
+              }
             }
             touching = approach > 0.0 && (gap + dt * dv).dot(nrm) > 0.0;
           }
@@ -127,7 +130,7 @@ class CrackContact : public CrackMotion<Dim, SF> {
   }
 
  protected:
-  using typename Base::SideFields;
+  using typename Base::SideFields, typename Base::Spin;
   using Base::block_key_, Base::block_node_, Base::block_nslots_, Base::cm_velocity, Base::crack_spin, Base::cracks_;
   using Base::cross, Base::field_centre, Base::grid_, Base::mass_, Base::rot_, Base::spin_, Base::update_spins;
   using Base::vm_;
@@ -151,11 +154,11 @@ class CrackContact : public CrackMotion<Dim, SF> {
     const std::size_t nc = cracks_.size();
     closing_.assign(block_node_.size() * nc, 0);
     for (std::size_t ci = 0; ci < nc; ++ci) {
-      const crack::Crack2D& c = cracks_[ci];
+      const crack::ExplicitCrack<Dim>& c = cracks_[ci];
       if (c.contact_law == Law::None) continue;
       const std::vector<SideFields>& sides = side_fields(ci);
       const std::size_t np = c.points.size();
-      const double spin = spin_[ci];
+      const Spin spin = spin_[ci];
       const std::vector<V>& vm = vm_[ci];
 #pragma omp parallel for schedule(static) if (parallel_points(np))
       for (std::size_t i = 0; i < np; ++i) {

@@ -4,13 +4,18 @@
 // its cell (its side fields) depends on the crack geometry and the fields' keys, not on the
 // momenta, so it is found once per step and again only after a crack moved; contact (the layer
 // above) reads the same side fields to predict the opening each crack point is about to have.
-// 2D only: crack::Crack2D polylines, their left normals and bilinear cell nodes.
+// A crack point's normal is its polyline's left normal (2D) or the area-weighted normal of its
+// triangles (3D, crack::point_normals); a crack's spin is a rate (2D) or a vector (3D).
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
+#include <Eigen/Cholesky>
+
 #include "libmpm/crack/crack2d.hpp"
+#include "libmpm/crack/fronts.hpp"
 #include "libmpm/mpm/crack_fields/field_slots.hpp"
 #include "libmpm/mpm/model.hpp"
 
@@ -18,9 +23,11 @@ namespace cleave::crack_fields {
 
 template <int Dim, class SF>
 class CrackMotion : public FieldSlots<Dim, SF> {
-  static_assert(Dim == 2, "crack fields: 2D only (crack::Crack2D surfaces)");
   using Base = FieldSlots<Dim, SF>;
   using V = Vec<Dim>;
+
+ protected:
+  using Spin = std::conditional_t<Dim == 2, double, Vec<3>>;  // a crack's rigid rotation rate
 
  public:
   // Moves every crack with the end-of-step momenta.
@@ -41,12 +48,12 @@ class CrackMotion : public FieldSlots<Dim, SF> {
     spin_.resize(cracks_.size());
     vm_.resize(cracks_.size());
     for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
-      crack::Crack2D& c = cracks_[ci];
+      crack::ExplicitCrack<Dim>& c = cracks_[ci];
       const std::size_t np = c.points.size();
       std::vector<V> va(np), vb(np);
       const std::vector<SideFields>& sides = side_fields(ci);
       std::vector<V>& vm = vm_[ci];
-      const double spin = spin_[ci] = crack_spin(c, vm);
+      const Spin spin = spin_[ci] = crack_spin(c, vm);
 #pragma omp parallel for schedule(static) if (parallel_points(np))
       for (std::size_t i = 0; i < np; ++i) {
         const V vcm = vm[i];
@@ -76,13 +83,33 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   using Base::block_key_, Base::block_node_, Base::kin_, Base::xkin_;
   static constexpr double kProbe = 1e-3;  // cells: how far above/below a surface its probe sits
 
-  CrackMotion(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin) : Base(m, grid, kin) {}
-
-  // Is crack point i an interior crack tip (an end point with material ahead, crack.tip[end])?
-  static bool is_tip(const crack::Crack2D& c, std::size_t i) {
-    return (i == 0 && c.tip[0]) || (i + 1 == c.points.size() && c.tip[1]);
+  CrackMotion(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin) : Base(m, grid, kin) {
+    if constexpr (Dim == 3) {
+      tip_point_.resize(cracks_.size());
+      point_normal_.resize(cracks_.size());
+      for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
+        const auto& c = cracks_[ci];
+        tip_point_[ci].assign(c.points.size(), 0);
+        for (std::size_t f = 0; f < c.fronts.size(); ++f)
+          if (f < c.tip.size() && c.tip[f])
+            for (int32_t n : c.fronts[f].nodes) tip_point_[ci][n] = 1;
+      }
+    }
   }
-  static V left_normal(const crack::Crack2D& c, std::size_t i) {
+
+  // Is crack point i an interior crack tip (2D: an end point with material ahead, crack.tip[end];
+  // 3D: a node of a front that is a tip)?
+  bool is_tip(const crack::ExplicitCrack<Dim>& c, std::size_t i) const {
+    if constexpr (Dim == 3) return tip_point_[c.id][i] != 0;
+    else return (i == 0 && c.tip[0]) || (i + 1 == c.points.size() && c.tip[1]);
+  }
+  // The unit normal at crack point i, towards "above" (3D: from the last refresh of the crack's
+  // side fields, which every loop over crack points runs first).
+  V left_normal(const crack::ExplicitCrack<Dim>& c, std::size_t i) const {
+    if constexpr (Dim == 3) return point_normal_[c.id][i];
+    else return left_normal2(c, i);
+  }
+  static V left_normal2(const crack::ExplicitCrack<Dim>& c, std::size_t i) {
     V t = V::Zero();
     if (i > 0) t += (c.points[i] - c.points[i - 1]).normalized();
     if (i + 1 < c.points.size()) t += (c.points[i + 1] - c.points[i]).normalized();
@@ -93,7 +120,7 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   // The crack's spin: the least-squares rigid rotation rate of its points moving with the
   // centre-of-mass velocities, omega = sum (x - xm) x (v - vm) / sum |x - xm|^2 (zero for a crack that only
   // translates or opens symmetrically). vm receives the points' centre-of-mass velocities.
-  double crack_spin(const crack::Crack2D& c, std::vector<V>& vm) const {
+  Spin crack_spin(const crack::ExplicitCrack<Dim>& c, std::vector<V>& vm) const {
     const std::size_t np = c.points.size();
     vm.resize(np);
 #pragma omp parallel for schedule(static) if (parallel_points(np))
@@ -101,15 +128,37 @@ class CrackMotion : public FieldSlots<Dim, SF> {
     V xm = V::Zero(), vbar = V::Zero();
     for (std::size_t i = 0; i < np; ++i) xm += c.points[i], vbar += vm[i];
     xm /= static_cast<double>(np), vbar /= static_cast<double>(np);
-    double num = 0.0, den = 0.0;
-    for (std::size_t i = 0; i < np; ++i) {
-      const V r = c.points[i] - xm, dv = vm[i] - vbar;
-      num += r.x() * dv.y() - r.y() * dv.x();
-      den += r.squaredNorm();
+    if constexpr (Dim == 3) {
+      // omega minimising sum |dv - omega x r|^2: (sum |r|^2 I - r r^T) omega = sum r x dv.
+      Mat<3> A = Mat<3>::Zero();
+      V b = V::Zero();
+      for (std::size_t i = 0; i < np; ++i) {
+        const V r = c.points[i] - xm, dv = vm[i] - vbar;
+        A += r.squaredNorm() * Mat<3>::Identity() - r * r.transpose();
+        b += r.cross(dv);
+      }
+      const Eigen::LDLT<Mat<3>> ldlt(A);
+      if (!(A.trace() > 0.0) || ldlt.info() != Eigen::Success) return V::Zero();
+      const V w = ldlt.solve(b);
+      return w.allFinite() ? w : V::Zero();
+    } else {
+      double num = 0.0, den = 0.0;
+      for (std::size_t i = 0; i < np; ++i) {
+        const V r = c.points[i] - xm, dv = vm[i] - vbar;
+        num += r.x() * dv.y() - r.y() * dv.x();
+        den += r.squaredNorm();
+      }
+      return den > 0.0 ? num / den : 0.0;
     }
-    return den > 0.0 ? num / den : 0.0;
   }
   static V cross(double omega, const V& r) { return V(-omega * r.y(), omega * r.x()); }
+  static V cross(const Vec<3>& omega, const V& r) { return omega.cross(r); }
+  static Spin no_spin() {
+    if constexpr (Dim == 3) return Vec<3>::Zero();
+    else return 0.0;
+  }
+  static bool spinning(double omega) { return omega != 0.0; }
+  static bool spinning(const Vec<3>& omega) { return (omega.array() != 0.0).any(); }
   // Every crack's spin and its points' centre-of-mass velocities (vm_) from the current momenta.
   void update_spins() {
     spin_.resize(cracks_.size());
@@ -118,10 +167,10 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   }
   // The spin a field of block b follows (slot s, or -1 for the ordinary field): that of the crack its
   // key names (the ordinary field: the crack of the block's first extra field).
-  double field_spin(int32_t b, int s) const {
+  Spin field_spin(int32_t b, int s) const {
     const uint32_t key = block_key_[b * kExtra + (s < 0 ? 0 : s)];
     const uint32_t code = key & 0xffffu ? key & 0xffffu : key >> 16;
-    return code ? spin_[(code - 1) / 2] : 0.0;
+    return code ? spin_[(code - 1) / 2] : no_spin();
   }
   // The fields' nodal velocities at multi-field nodes, carried from each field's mass centre to the
   // node with its crack's spin: v = p / m + omega x (x_node - centre). A field's momentum over its mass
@@ -137,14 +186,14 @@ class CrackMotion : public FieldSlots<Dim, SF> {
       const V xn = node_position(n);
       const int32_t bb = static_cast<int32_t>(b);
       if (grid_.mass[n] > 0.0) {
-        const double w = field_spin(bb, -1);
-        if (w != 0.0) kin_[n].v += cross(w, xn - field_centre(n, -1));
+        const Spin w = field_spin(bb, -1);
+        if (spinning(w)) kin_[n].v += cross(w, xn - field_centre(n, -1));
       }
       for (int s = 0; s < block_nslots_[b]; ++s) {
         const int32_t x = static_cast<int32_t>(b * kExtra + s);
         if (!(mass_[x] > 0.0)) continue;
-        const double w = field_spin(bb, s);
-        if (w != 0.0) xkin_[x].v += cross(w, xn - field_centre(n, x));
+        const Spin w = field_spin(bb, s);
+        if (spinning(w)) xkin_[x].v += cross(w, xn - field_centre(n, x));
       }
     }
   }
@@ -176,9 +225,9 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   // passes and the crack motion read them), and again only after a crack moved.
   struct SideFields {
     int count = 0;
-    int64_t node[4];
-    double w[4];
-    int32_t field[4];
+    int64_t node[1 << Dim];
+    double w[1 << Dim];
+    int32_t field[1 << Dim];
   };
   // The side fields of crack ci, two per point (2 i: above, 2 i + 1: below), found afresh when a
   // crack has moved since. Called before the loops over crack points, which run in parallel.
@@ -189,7 +238,7 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   // The velocity a surface at x follows: that of the field a virtual particle at its point's probe
   // would use, carried from each field's mass centre to x with the crack's spin, interpolated at the
   // surface (fallback where no such field has mass).
-  V side_velocity(const SideFields& sf, const V& fallback, double spin, const V& x) const {
+  V side_velocity(const SideFields& sf, const V& fallback, const Spin& spin, const V& x) const {
     V sum = V::Zero();
     double wsum = 0.0;
     for (int e = 0; e < sf.count; ++e) {
@@ -199,13 +248,14 @@ class CrackMotion : public FieldSlots<Dim, SF> {
       const double m = xs < 0 ? grid_.mass[n] : mass_[xs];
       if (m > 0.0) {
         sum += w * (xs < 0 ? grid_.momentum[n] : momentum_[xs]) / m, wsum += w;
-        if (spin != 0.0) sum += w * cross(spin, x - field_centre(n, xs));
+        if (spinning(spin)) sum += w * cross(spin, x - field_centre(n, xs));
       }
     }
     return wsum > 0.0 ? V(sum / wsum) : fallback;
   }
   void find_side_fields(std::size_t ci) {
-    const crack::Crack2D& c = cracks_[ci];
+    const crack::ExplicitCrack<Dim>& c = cracks_[ci];
+    if constexpr (Dim == 3) point_normal_[ci] = crack::point_normals(c);
     auto& out = side_fields_[ci];
     out.assign(2 * c.points.size(), SideFields{});
     const std::size_t np = c.points.size();
@@ -233,7 +283,9 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   }
 
   std::vector<std::vector<SideFields>> side_fields_;  // per crack, two per point (side_fields())
-  std::vector<double> spin_;                          // per crack: its spin (crack_spin, update_spins)
+  std::vector<Spin> spin_;                            // per crack: its spin (crack_spin, update_spins)
+  std::vector<std::vector<uint8_t>> tip_point_;       // 3D, per crack and point: on a front that is a tip
+  std::vector<std::vector<V>> point_normal_;          // 3D, per crack and point: normal (find_side_fields)
   std::vector<std::vector<V>> vm_;                    // per crack: its points' centre-of-mass velocities
   std::vector<uint8_t> side_valid_;                   // per crack: side_fields_ are up to date
 };

@@ -6,7 +6,7 @@
 // (take_overflow) and uses the node's ordinary field. Slots are numbered serially in particle
 // order, so the layout, and with it every sum over a node's fields, is the same for any thread
 // count. Field x < 0 always means the node's ordinary field.
-// 2D only: each slot also sums the normals of the crack::Crack2D segments its pairs crossed.
+// Each slot also sums the normals of the crack simplices (segments, triangles) its pairs crossed.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -27,7 +27,6 @@ namespace crack_fields {
 
 template <int Dim, class SF>
 class FieldSlots : public Classification<Dim, SF> {
-  static_assert(Dim == 2, "crack fields: 2D only (normals of crack::Crack2D segments)");
   using Base = Classification<Dim, SF>;
   using V = Vec<Dim>;
 
@@ -66,8 +65,13 @@ class FieldSlots : public Classification<Dim, SF> {
     seg_normal_.resize(cracks_.size());
     for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
       const auto& c = cracks_[ci];
-      seg_normal_[ci].resize(c.points.size() - 1);
-      for (std::size_t sgi = 0; sgi + 1 < c.points.size(); ++sgi) seg_normal_[ci][sgi] = segment_normal(c, sgi);
+      if constexpr (Dim == 3) {
+        seg_normal_[ci].resize(c.simplices.size());
+        for (std::size_t t = 0; t < c.simplices.size(); ++t) seg_normal_[ci][t] = triangle_normal(c, t);
+      } else {
+        seg_normal_[ci].resize(c.points.size() - 1);
+        for (std::size_t sgi = 0; sgi + 1 < c.points.size(); ++sgi) seg_normal_[ci][sgi] = segment_normal(c, sgi);
+      }
     }
     const std::size_t nn = near_.size();
     pair_slot_.assign(nn * N, 0);
@@ -147,7 +151,13 @@ class FieldSlots : public Classification<Dim, SF> {
     return s;
   }
 
-  static V segment_normal(const crack::Crack2D& c, std::size_t s) {
+  // 3D: minus the triangle's unit normal (which points above): from above to below, as in 2D.
+  static V triangle_normal(const crack::ExplicitCrack<Dim>& c, std::size_t t) {
+    const auto& T = c.simplices[t];
+    const V n = (c.points[T[1]] - c.points[T[0]]).cross(c.points[T[2]] - c.points[T[0]]);
+    return -n / n.norm();
+  }
+  static V segment_normal(const crack::ExplicitCrack<Dim>& c, std::size_t s) {
     const V t = c.points[s + 1] - c.points[s];
     return V(t.y(), -t.x()) / t.norm();  // right of the crack direction: from above to below
   }

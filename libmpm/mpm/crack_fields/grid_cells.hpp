@@ -11,8 +11,9 @@
 // rounded some sums differently: the results must stay bit-identical. For the same reason the
 // functions that the stepper's passes inline are defined in CrackFields itself (see there).
 //
-// 2D only: cells are numbered i * ny + j and nodes i * stride + j, and a point's cell has four
-// nodes; the crack fields exist for crack::Crack2D polylines alone.
+// Cells are numbered i * ny + j (2D) or (i * ny + j) * nz + k (3D), nodes as the grid numbers them
+// (grid.hpp); a point's cell has 2^Dim nodes. The 2D expressions are kept exactly as they were
+// written for 2D alone: the results are bit-identical to theirs.
 #pragma once
 #include <omp.h>
 
@@ -28,33 +29,78 @@ namespace cleave::crack_fields {
 
 template <int Dim>
 class GridCells {
-  static_assert(Dim == 2, "crack fields: 2D only (cells i * ny + j, four nodes per cell)");
   using V = Vec<Dim>;
 
  protected:
   explicit GridCells(const GridGeometry<Dim>& G) : G_(G) {
     stride_ = G_.strides();
     inv_h_ = 1.0 / G_.h;
-    cells_[0] = G_.nodes[0] - 1;
-    cells_[1] = G_.nodes[1] - 1;
+    for (int d = 0; d < Dim; ++d) cells_[d] = G_.nodes[d] - 1;
+  }
+
+  std::size_t cell_count() const {
+    std::size_t n = 1;
+    for (int d = 0; d < Dim; ++d) n *= static_cast<std::size_t>(cells_[d]);
+    return n;
   }
 
   // The cell holding x, or -1 outside the grid.
   int64_t cell_of(const V& x) const {
-    const double fx = (x.x() - G_.origin.x()) * inv_h_, fy = (x.y() - G_.origin.y()) * inv_h_;
-    if (!(fx >= 0.0 && fy >= 0.0 && fx < cells_[0] && fy < cells_[1])) return -1;
-    return static_cast<int64_t>(fx) * cells_[1] + static_cast<int64_t>(fy);
+    if constexpr (Dim == 3) {
+      int64_t c = 0;
+      for (int d = 0; d < 3; ++d) {
+        const double f = (x[d] - G_.origin[d]) * inv_h_;
+        if (!(f >= 0.0 && f < cells_[d])) return -1;
+        c = c * cells_[d] + static_cast<int64_t>(f);
+      }
+      return c;
+    } else {
+      const double fx = (x.x() - G_.origin.x()) * inv_h_, fy = (x.y() - G_.origin.y()) * inv_h_;
+      if (!(fx >= 0.0 && fy >= 0.0 && fx < cells_[0] && fy < cells_[1])) return -1;
+      return static_cast<int64_t>(fx) * cells_[1] + static_cast<int64_t>(fy);
+    }
   }
 
   V node_position(int64_t n) const {
-    const int64_t i = n / stride_[0], j = n % stride_[0];
-    return node_position(i, j);
+    if constexpr (Dim == 3) {
+      const int64_t i = n / stride_[0], r = n % stride_[0];
+      return node_position(i, r / stride_[1], r % stride_[1]);
+    } else {
+      const int64_t i = n / stride_[0], j = n % stride_[0];
+      return node_position(i, j);
+    }
   }
-  V node_position(int64_t i, int64_t j) const { return V(G_.origin.x() + G_.h * i, G_.origin.y() + G_.h * j); }
+  V node_position(int64_t i, int64_t j) const
+    requires(Dim == 2)
+  {
+    return V(G_.origin.x() + G_.h * i, G_.origin.y() + G_.h * j);
+  }
+  V node_position(int64_t i, int64_t j, int64_t k) const
+    requires(Dim == 3)
+  {
+    return V(G_.origin.x() + G_.h * i, G_.origin.y() + G_.h * j, G_.origin.z() + G_.h * k);
+  }
 
-  // The four nodes of x's cell with bilinear weights (massless crack particles have no size).
+  // The 2^Dim nodes of x's cell with (bi/tri)linear weights (massless crack particles have no size).
   template <class F>
   void linear_nodes(const V& x, F&& f) const {
+    if constexpr (Dim == 3) {
+      double r[3];
+      int64_t n0 = 0;
+      for (int d = 0; d < 3; ++d) {
+        const double fd = (x[d] - G_.origin[d]) * inv_h_;
+        if (!(fd >= 0.0 && fd <= cells_[d])) return;
+        const int i = std::min(static_cast<int>(fd), cells_[d] - 1);
+        r[d] = fd - i;
+        n0 += static_cast<int64_t>(i) * static_cast<int64_t>(stride_[d]);
+      }
+      for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b)
+          for (int c = 0; c < 2; ++c)
+            f(n0 + a * static_cast<int64_t>(stride_[0]) + b * static_cast<int64_t>(stride_[1]) + c,
+              (a ? r[0] : 1 - r[0]) * (b ? r[1] : 1 - r[1]) * (c ? r[2] : 1 - r[2]));
+      return;
+    }
     const double fx = (x.x() - G_.origin.x()) * inv_h_, fy = (x.y() - G_.origin.y()) * inv_h_;
     if (!(fx >= 0.0 && fy >= 0.0 && fx <= cells_[0] && fy <= cells_[1])) return;
     const int i = std::min(static_cast<int>(fx), cells_[0] - 1), j = std::min(static_cast<int>(fy), cells_[1] - 1);

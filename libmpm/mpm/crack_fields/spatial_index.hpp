@@ -3,12 +3,16 @@
 // near them. Each cell lists, per crack, the range of segments within kReach cells of it. The
 // classification scans only its particle's cell's ranges, and the near test sends every particle
 // farther than near_reach_ from its cell's ranges down the stepper's single-field fast path.
-// 2D only: the ranges are of crack::Crack2D polyline segments, and the near test, which runs for
-// every particle in the stepper's strip pass, is written out for two axes.
+// 2D: the ranges are of polyline segments in their order (the crossing test of a contiguous range
+// is that of the polyline: crossing.hpp). 3D: a range is of the list tri_ids_, which holds per cell
+// and crack the triangles within kReach cells, in triangle order. The near test, which runs for every
+// particle in the stepper's strip pass, is written out for each dimension's axes.
 #pragma once
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "libmpm/crack/crack2d.hpp"
@@ -19,7 +23,6 @@ namespace cleave::crack_fields {
 
 template <int Dim, class SF>
 class SpatialIndex : public GridCells<Dim> {
-  static_assert(Dim == 2, "crack fields: 2D only (segment ranges of crack::Crack2D polylines)");
   using Base = GridCells<Dim>;
   using V = Vec<Dim>;
 
@@ -29,17 +32,18 @@ class SpatialIndex : public GridCells<Dim> {
   // twice that of the segment.
   static constexpr int kReach = SF::K == 2 ? 2 : 3;
 
-  // An entry of the spatial index (build_index).
+  // An entry of the spatial index (build_index): 2D, segments seg_lo .. seg_hi of the crack; 3D,
+  // the triangles tri_ids_[seg_lo .. seg_hi].
   struct Entry {
     int32_t crack, seg_lo, seg_hi, next;
-    V lo, hi;  // bounding box of the range's vertices seg_lo .. seg_hi + 1
+    V lo, hi;  // bounding box of the range's vertices (2D: seg_lo .. seg_hi + 1)
   };
   // Is a particle at x near a crack: in a cell with index entries, within near_reach_ of the box of
   // one of them? in_box(x): is x in the box of the cells with entries (a few comparisons, which
   // the caller's loop vectorises); operator(): the full test, for x in that box.
   // (Everything by value: the caller's flag stores (uint8_t) could otherwise alias these members
   // and force reloads in its loop.)
-  struct NearTest {
+  struct NearTest2 {
     double ox, oy, inv_h, lo0, hi0, lo1, hi1, reach;
     int64_t ny;
     const int32_t* head;
@@ -59,6 +63,31 @@ class SpatialIndex : public GridCells<Dim> {
       return 0;
     }
   };
+  struct NearTest3 {
+    double o[3], inv_h, lo[3], hi[3], reach;
+    int64_t ny, nz;
+    const int32_t* head;
+    const Entry* entries;
+    uint8_t in_box(const V& x) const {
+      uint8_t in = 1;
+      for (int d = 0; d < 3; ++d) {
+        const double f = (x[d] - o[d]) * inv_h;
+        in &= (f >= lo[d]) & (f < hi[d]);
+      }
+      return in;
+    }
+    uint8_t operator()(const V& x) const {
+      int64_t cell = 0;
+      const int64_t n[3] = {0, ny, nz};
+      for (int d = 0; d < 3; ++d) cell = cell * n[d] + static_cast<int64_t>((x[d] - o[d]) * inv_h);
+      for (int32_t e = head[cell]; e >= 0; e = entries[e].next) {
+        const Entry& en = entries[e];
+        if ((x.array() >= en.lo.array() - reach).all() && (x.array() <= en.hi.array() + reach).all()) return 1;
+      }
+      return 0;
+    }
+  };
+  using NearTest = std::conditional_t<Dim == 2, NearTest2, NearTest3>;
 
   // The index for the cracks as they are now (Task 1 preamble).
   void prepare_index() {
@@ -66,15 +95,20 @@ class SpatialIndex : public GridCells<Dim> {
     build_index();
   }
   NearTest near_test() const {
+    if constexpr (Dim == 3)
+      return {{G_.origin.x(), G_.origin.y(), G_.origin.z()}, inv_h_, {box_lo_[0], box_lo_[1], box_lo_[2]},
+              {box_hi_[0], box_hi_[1], box_hi_[2]}, near_reach_, static_cast<int64_t>(cells_[1]),
+              static_cast<int64_t>(cells_[2]), cell_head_.data(), entries_.data()};
+    else
     return {G_.origin.x(), G_.origin.y(), inv_h_, box_lo_[0], box_hi_[0], box_lo_[1], box_hi_[1], near_reach_,
             static_cast<int64_t>(cells_[1]), cell_head_.data(), entries_.data()};
   }
 
  protected:
-  using Base::cells_, Base::G_, Base::inv_h_;
+  using Base::cell_count, Base::cells_, Base::G_, Base::inv_h_;
 
   explicit SpatialIndex(Model<Dim>& m) : Base(m.grid), cracks_(m.cracks) {
-    cell_head_.assign(static_cast<std::size_t>(cells_[0]) * cells_[1], -1);
+    cell_head_.assign(cell_count(), -1);
     // A node has a non-zero weight for a particle within r cells of it on each axis: r = 1 (linear),
     // 1 + half-width (uGIMP). A multi-field node's field comes from a particle-node line that meets a
     // segment, so that segment point lies within r of the node, and a particle weighting the node
@@ -98,6 +132,10 @@ class SpatialIndex : public GridCells<Dim> {
   // cannot reach the particle-node box, and the range's end vertices are either the crack's tips or
   // vertices no particle-node line of this cell can touch.
   void build_index() {
+    if constexpr (Dim == 3) build_index3();
+    else build_index2();
+  }
+  void build_index2() {
     for (int64_t c : touched_) cell_head_[c] = -1;
     touched_.clear();
     entries_.clear();
@@ -143,10 +181,109 @@ class SpatialIndex : public GridCells<Dim> {
     }
   }
 
-  std::vector<crack::Crack2D>& cracks_;
+  // 3D: per crack, every triangle's box grown by kReach cells is binned into the cells it overlaps
+  // (a counting sort by cell: the list of a cell holds its triangles crack by crack, in triangle
+  // order, for any thread count); one entry per cell and crack.
+  void build_index3() {
+    for (int64_t c : touched_) cell_head_[c] = -1, cell_fill_[c] = 0;
+    touched_.clear();
+    entries_.clear();
+    cell_fill_.resize(cell_head_.size(), 0);
+    const double grow = kReach * G_.h;
+    struct Span {
+      int lo[3], hi[3];
+    };
+    std::vector<Span> spans;
+    int blo[3] = {cells_[0], cells_[1], cells_[2]}, bhi[3] = {-1, -1, -1};
+    auto span_of = [&](const crack::ExplicitCrack<Dim>& c, const std::array<int32_t, Dim>& t) {
+      const V lo = c.points[t[0]].cwiseMin(c.points[t[1]]).cwiseMin(c.points[t[2]]).array() - grow;
+      const V hi = c.points[t[0]].cwiseMax(c.points[t[1]]).cwiseMax(c.points[t[2]]).array() + grow;
+      Span sp;
+      for (int d = 0; d < 3; ++d) {
+        sp.lo[d] = std::max(0, static_cast<int>(std::floor((lo[d] - G_.origin[d]) * inv_h_)));
+        sp.hi[d] = std::min(cells_[d] - 1, static_cast<int>(std::floor((hi[d] - G_.origin[d]) * inv_h_)));
+      }
+      return sp;
+    };
+    auto for_cells = [&](const Span& sp, auto&& f) {
+      for (int i = sp.lo[0]; i <= sp.hi[0]; ++i)
+        for (int j = sp.lo[1]; j <= sp.hi[1]; ++j)
+          for (int k = sp.lo[2]; k <= sp.hi[2]; ++k)
+            f((static_cast<int64_t>(i) * cells_[1] + j) * cells_[2] + k);
+    };
+    // Pass 1: how many triangles each cell receives; pass 2: fill at the cells' offsets.
+    std::size_t total = 0;
+    tri_lo_.resize(cracks_.size()), tri_hi_.resize(cracks_.size());
+    for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
+      const auto& c = cracks_[ci];
+      tri_lo_[ci].resize(c.simplices.size()), tri_hi_[ci].resize(c.simplices.size());
+      for (std::size_t t = 0; t < c.simplices.size(); ++t) {
+        const auto& T = c.simplices[t];
+        tri_lo_[ci][t] = c.points[T[0]].cwiseMin(c.points[T[1]]).cwiseMin(c.points[T[2]]);
+        tri_hi_[ci][t] = c.points[T[0]].cwiseMax(c.points[T[1]]).cwiseMax(c.points[T[2]]);
+      }
+    }
+    for (const auto& c : cracks_)
+      for (const auto& t : c.simplices) {
+        const Span sp = span_of(c, t);
+        spans.push_back(sp);
+        for (int d = 0; d < 3; ++d)
+          if (sp.lo[d] <= sp.hi[d]) blo[d] = std::min(blo[d], sp.lo[d]), bhi[d] = std::max(bhi[d], sp.hi[d]);
+        for_cells(sp, [&](int64_t cell) {
+          if (cell_fill_[cell]++ == 0) touched_.push_back(cell);
+          ++total;
+        });
+      }
+    std::sort(touched_.begin(), touched_.end());
+    cell_offset_.resize(touched_.size() + 1);
+    cell_offset_[0] = 0;
+    for (std::size_t k = 0; k < touched_.size(); ++k) {
+      cell_offset_[k + 1] = cell_offset_[k] + cell_fill_[touched_[k]];
+      cell_fill_[touched_[k]] = static_cast<int32_t>(k);  // now: the cell's rank in touched_
+    }
+    tri_ids_.resize(total);
+    std::vector<int32_t> cursor(cell_offset_.begin(), cell_offset_.end() - 1);
+    std::vector<int32_t> tri_crack(total);
+    std::size_t si = 0;
+    for (std::size_t ci = 0; ci < cracks_.size(); ++ci)
+      for (std::size_t t = 0; t < cracks_[ci].simplices.size(); ++t)
+        for_cells(spans[si++], [&](int64_t cell) {
+          const int32_t at = cursor[cell_fill_[cell]]++;
+          tri_ids_[at] = static_cast<int32_t>(t);
+          tri_crack[at] = static_cast<int32_t>(ci);
+        });
+    // Entries: one per cell and crack, chained per cell (the last crack first, as 2D chains them).
+    for (std::size_t k = 0; k < touched_.size(); ++k) {
+      const int64_t cell = touched_[k];
+      for (int32_t a = cell_offset_[k]; a < cell_offset_[k + 1];) {
+        const int32_t ci = tri_crack[a];
+        int32_t b = a;
+        const auto& c = cracks_[ci];
+        V lo = V::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+        while (b < cell_offset_[k + 1] && tri_crack[b] == ci) {
+          for (int v = 0; v < 3; ++v) {
+            const V& x = c.points[c.simplices[tri_ids_[b]][v]];
+            lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+          }
+          ++b;
+        }
+        entries_.push_back({ci, a, b - 1, cell_head_[cell], lo, hi});
+        cell_head_[cell] = static_cast<int32_t>(entries_.size() - 1);
+        a = b;
+      }
+      cell_fill_[cell] = 0;
+    }
+    for (int d = 0; d < 3; ++d) box_lo_[d] = box_hi_[d] = 0.0;
+    if (bhi[0] >= 0 && !touched_.empty())
+      for (int d = 0; d < 3; ++d) box_lo_[d] = blo[d], box_hi_[d] = bhi[d] + 1.0;
+  }
+
+  std::vector<crack::ExplicitCrack<Dim>>& cracks_;
   double near_reach_;  // a particle is near when within this distance of an index entry's box
   std::vector<int32_t> cell_head_;
-  double box_lo_[2] = {0.0, 0.0}, box_hi_[2] = {0.0, 0.0};  // cells [lo, hi) holding all index entries
+  double box_lo_[Dim] = {}, box_hi_[Dim] = {};  // cells [lo, hi) holding all index entries
+  std::vector<int32_t> tri_ids_, cell_offset_, cell_fill_;  // 3D (build_index3)
+  std::vector<std::vector<V>> tri_lo_, tri_hi_;  // 3D, per crack and triangle: its bounding box
   std::vector<int64_t> touched_;
   std::vector<Entry> entries_;
 };

@@ -1,0 +1,16 @@
+// The "contact" object of an explicit crack, the same in 2D and 3D scenes (docs/scenes.md):
+// {"law": stick | frictionless | friction | none, "mu", "detection": volume | displacement,
+// "v_sep", "v_contact"}. Defined in crack2d.cpp beside the contact-law registry.
+#pragma once
+#include "libmpm/core/json_reader.hpp"
+#include "libmpm/crack/explicit_crack.hpp"
+
+namespace cleave::crack {
+
+// Reads crack_entry["contact"] into c (law, friction, detection and its thresholds). SceneError
+// names the key path: an unknown law (the valid ones listed), mu missing / negative / given with a
+// law that takes none, an unknown detection, thresholds out of range or given with displacement.
+template <int Dim>
+void read_crack_contact(const ObjectReader& crack_entry, ExplicitCrack<Dim>& c);
+
+}  // namespace cleave::crack
