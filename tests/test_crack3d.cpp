@@ -281,5 +281,46 @@ INSTANTIATE_TEST_SUITE_P(LawsAndDetections, CollidingCrackedBlocks,
                                            LawDetection{"friction", "displacement"}),
                          [](const auto& info) { return info.param.first + "_" + info.param.second; });
 
+// Bad input: exit 2 (a SceneError) naming the crack and the reason, before anything runs.
+json small_block_with(const json& crack) {
+  json s;
+  s["analysis"] = {{"type", "3d"}};
+  s["grid"] = {{"min", {-0.002, -0.002, -0.002}}, {"max", {0.006, 0.006, 0.006}}, {"cell_size", 1e-3}};
+  s["materials"] = json::array({test::material("m", 1e9, 0.3, 1000)});
+  s["bodies"] = json::array({{{"name", "b"}, {"material", "m"},
+                              {"shape", {{"type", "box"}, {"min", {0, 0, 0}}, {"max", {0.004, 0.004, 0.004}}}}}});
+  s["cracks"] = json::array({crack});
+  s["time"] = {{"end", 1e-6}};
+  return s;
+}
+
+TEST(Crack3dInput, BadCrackSurfacesAreRefusedNamingTheCrackAndTheReason) {
+  auto refused = [](const json& crack) { return test::error_of([&] { build_model<3>(small_block_with(crack)); }); };
+  const json far = {{"name", "far"}, {"ellipse", {{"center", {0.02, 0.02, 0.02}}, {"normal", {0, 0, 1}}, {"radius", 0.001}}}};
+  SceneError e = refused(far);
+  EXPECT_EQ(e.key_path(), "cracks[0]");
+  EXPECT_NE(std::string(e.what()).find("outside every body"), std::string::npos) << e.what();
+  const json degenerate = {{"name", "flat"}, {"triangles", {{{0.001, 0.001, 0.0015}, {0.002, 0.002, 0.0015}, {0.003, 0.003, 0.0015}}}}};
+  e = refused(degenerate);
+  EXPECT_NE(std::string(e.what()).find("triangle 0"), std::string::npos) << e.what();
+  const json wide = {{"name", "wide"}, {"rectangle", {{"corner", {-0.0019, 0.001, 0.0015}}, {"edges", {{0.002, 0, 0}, {0, 0.002, 0}}}}},
+                     {"element_size", 0.0005}};
+  json s = small_block_with(wide);
+  s["grid"]["min"] = {-0.001, -0.002, -0.002};  // the crack, kept up to a cell beyond the body, leaves the grid
+  e = test::error_of([&] { build_model<3>(s); });
+  EXPECT_NE(std::string(e.what()).find("outside the grid"), std::string::npos) << e.what();
+  json tips = {{"name", "t"}, {"ellipse", {{"center", {0.002, 0.002, 0.0015}}, {"normal", {0, 0, 1}}, {"radius", 0.001}}},
+               {"tips", "both"}};
+  e = refused(tips);
+  EXPECT_EQ(e.key_path(), "cracks[0].tips");
+  tips.erase("tips");
+  tips["contact"] = {{"law", "glue"}};
+  e = refused(tips);
+  EXPECT_EQ(e.key_path(), "cracks[0].contact.law");
+  const json missing = {{"name", "f"}, {"file", "/nonexistent/crack.stl"}};
+  e = refused(missing);
+  EXPECT_EQ(e.key_path(), "cracks[0].file");
+}
+
 }  // namespace
 }  // namespace cleave

@@ -6,8 +6,10 @@
 // range of the ratios. Wall-clock time is the figure; printed beside it are the ratio of the process
 // CPU times (with one thread, insensitive to time slices lost to other processes on a shared
 // machine) and the ratio of the fastest block of each (the least disturbed by other processes).
-// Usage: cleave-bench-crack [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]
-// (defaults: 0.25 mm cells = 230 400 particles, blocks of 2 steps, 150 repetitions, after 5 warm-up
+// Usage: cleave-bench-crack [--case dcb|rod3d] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]
+// --case rod3d: the same for 3D cracks, the quarter rod of seed 000 §4.1 (data/scenes/rod_elliptical_crack.json)
+// at 2.5 mm cells, 829 440 particles, 20 repetitions.
+// (dcb defaults: 0.25 mm cells = 230 400 particles, blocks of 2 steps, 150 repetitions, after 5 warm-up
 // steps of each model; --only steps one of the two, for profiling; --null builds both models
 // without the crack, so the figure it prints is the benchmark's own bias and noise, not zero).
 // Short blocks keep the two halves of a repetition close in time, so that a change of the machine's
@@ -38,16 +40,18 @@ double cpu_seconds() {
   return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
-Model<2> dcb(nlohmann::json scene, bool cracked) {
+template <int Dim>
+Model<Dim> with_or_without_crack(nlohmann::json scene, bool cracked) {
   if (!cracked) scene.erase("cracks");
-  return build_model<2>(scene);
+  return build_model<Dim>(scene);
 }
 
+template <int Dim>
 struct Run {
-  Model<2> model;
-  std::unique_ptr<Stepper<2>> stepper;
-  Run(const nlohmann::json& scene, bool cracked) : model(dcb(scene, cracked)) {
-    stepper = make_stepper<2>(model);
+  Model<Dim> model;
+  std::unique_ptr<Stepper<Dim>> stepper;
+  Run(const nlohmann::json& scene, bool cracked) : model(with_or_without_crack<Dim>(scene, cracked)) {
+    stepper = make_stepper<Dim>(model);
     for (int i = 0; i < 5; ++i) stepper->step();  // warm-up: first contacts, allocations
   }
   std::vector<double> task_seconds[step_timers::kSlots];  // with -DCLEAVE_STEP_TIMERS=ON: per task, per block
@@ -71,36 +75,50 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
+template <int Dim>
+int bench(const char* what, const nlohmann::json& scene, int steps, int reps, const std::string& only, bool null_test);
+
 int main(int argc, char** argv) {
-  double cell = 0.25;
-  int steps = 2, reps = 150;
-  std::string only;
+  double cell = 0;
+  int steps = 2, reps = 0;
+  std::string only, which = "dcb";
   bool null_test = false;  // both models uncracked: the benchmark's own bias and noise
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     bool ok = true;
     if (a == "--cell" && i + 1 < argc) cell = std::atof(argv[++i]);
+    else if (a == "--case" && i + 1 < argc) which = argv[++i];
     else if (a == "--steps" && i + 1 < argc) steps = std::atoi(argv[++i]);
     else if (a == "--reps" && i + 1 < argc) reps = std::atoi(argv[++i]);
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else if (a == "--null") null_test = true;
     else ok = false;
-    if (!ok || (!only.empty() && only != "cracked" && only != "uncracked")) {
-      std::fprintf(stderr, "usage: cleave-bench-crack [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]\n");
+    if (!ok || (!only.empty() && only != "cracked" && only != "uncracked") || (which != "dcb" && which != "rod3d")) {
+      std::fprintf(stderr, "usage: cleave-bench-crack [--case dcb|rod3d] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]\n");
       return a == "--help" ? 0 : 2;
     }
   }
+  if (which == "rod3d") {  // seed 000 §4.1, its quarter model refined to >= 500 000 particles (3 mm: 480 000)
+    nlohmann::json scene = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/rod_elliptical_crack.json");
+    scene["resolution"] = cell > 0 ? cell : 2.5;  // mm: 829 440 particles (the grid takes 7.5 / k)
+    return bench<3>("rod (3D, elliptical crack)", scene, steps, reps > 0 ? reps : 20, only, null_test);
+  }
   nlohmann::json scene = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");
-  scene["resolution"] = cell;  // the scene's one discretisation key (scene units)
+  scene["resolution"] = cell > 0 ? cell : 0.25;  // the scene's one discretisation key (scene units)
   scene["mpm"]["shape_function"] = "ugimp";
-  scene["cracks"][0]["segment_length"] = cell;
+  scene["cracks"][0]["segment_length"] = scene["resolution"];
+  return bench<2>("DCB", scene, steps, reps > 0 ? reps : 150, only, null_test);
+}
+
+template <int Dim>
+int bench(const char* what, const nlohmann::json& scene, int steps, int reps, const std::string& only, bool null_test) {
   if (!only.empty()) {
-    Run r(scene, only == "cracked");
+    Run<Dim> r(scene, only == "cracked");
     for (int i = 0; i < reps; ++i)
       std::printf("rep %d: %s %.1f ns/particle-step\n", i + 1, only.c_str(), r.time(steps).first);
     return 0;
   }
-  Run cracked(scene, !null_test), uncracked(scene, false);
+  Run<Dim> cracked(scene, !null_test), uncracked(scene, false);
   std::vector<double> with, without, ratio, cpu_ratio;
   for (int i = 0; i < reps; ++i) {
     std::pair<double, double> a, b;
@@ -113,10 +131,10 @@ int main(int argc, char** argv) {
   }
   const double best_with = *std::min_element(with.begin(), with.end()),
                best_without = *std::min_element(without.begin(), without.end());
-  std::printf("DCB %zu particles, %d threads, %d steps x %d reps (median): cracked %.1f ns, uncracked %.1f ns, "
+  std::printf("%s, %zu particles, %d threads, %d steps x %d reps (median): cracked %.1f ns, uncracked %.1f ns, "
               "crack overhead %+.1f %% (per-rep range %+.1f ... %+.1f %%; CPU time %+.1f %%; best blocks %.1f / %.1f ns "
               "= %+.1f %%)\n",
-              cracked.model.particles.size(), omp_get_max_threads(), steps, reps, median(with), median(without),
+              what, cracked.model.particles.size(), omp_get_max_threads(), steps, reps, median(with), median(without),
               100 * (median(ratio) - 1), 100 * (*std::min_element(ratio.begin(), ratio.end()) - 1),
               100 * (*std::max_element(ratio.begin(), ratio.end()) - 1), 100 * (median(cpu_ratio) - 1), best_with,
               best_without, 100 * (best_with / best_without - 1));
