@@ -58,10 +58,12 @@ class ObjectReader {
     if (!has(key)) return fallback;
     const auto& v = j_[key];
     if (!v.is_number_integer()) throw SceneError(at(key), "expected an integer");
-    const long long i = v.get<long long>();
+    // Above a long long's range (an unsigned JSON integer) it would wrap to a negative value.
+    const bool huge = v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(INT64_MAX);
+    const long long i = huge ? INT64_MAX : v.get<long long>();
     if (i < lo || i > hi)
       throw SceneError(at(key), "must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
-                                    " (got " + std::to_string(i) + ")");
+                                    " (got " + v.dump() + ")");
     return static_cast<int>(i);
   }
   std::string string(const char* key) const {

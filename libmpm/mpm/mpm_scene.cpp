@@ -27,9 +27,31 @@ const char* const kFieldNames[] = {"displacement", "velocity", "stress", "strain
                                    "mass", "volume", "size", "rotation", "von_mises", "principal_stress_difference"};
 
 // Lattice coordinates of a particle, used to find boundary faces for tractions.
+// A shape reaching far beyond an explicit grid (a union member far away) would need a lattice loop
+// that long, and lattice keys beyond int64's range (undefined behaviour): refused beyond 1e6 cells. (A function of its
+// own: inside the particle fill, the check changed how GCC contracted the fill's arithmetic, and the
+// particles' positions by an ulp.)
+template <int Dim>
+[[gnu::noinline]] void check_lattice_reach(const Vec<Dim>& lo, const Vec<Dim>& hi, const GridGeometry<Dim>& g,
+                                           const std::string& path, const std::string& body) {
+  for (int d = 0; d < Dim; ++d) {
+    const double a = std::floor((lo[d] - g.origin[d]) / g.h) - 1, b = std::ceil((hi[d] - g.origin[d]) / g.h) + 1;
+    if (!(std::isfinite(a) && std::isfinite(b) && a >= -1e6 && b <= g.nodes[d] + 1e6))
+      throw SceneError(path, "body '" + body + "' reaches more than 1e6 cells outside the grid along axis " +
+                                 std::string(1, "xyz"[d]) + " (its shape's bounding box); enlarge grid.min/grid.max "
+                                 "or move the shape");
+    if (Dim == 3 && b > 2e6)  // LatticeKey's range in 3D
+      throw SceneError(path, "body '" + body + "' reaches more than 2e6 cells from the grid's origin along axis " +
+                                 std::string(1, "xyz"[d]) + "; a 3D lattice that long is not supported (coarser resolution)");
+  }
+}
+
 template <int Dim>
 struct LatticeKey {
   std::array<int64_t, Dim> c;
+  // (Signed and exact: check_lattice_reach keeps |c| within 2e6 cells in 3D, so |k| < 2^63. Written
+  // with wrapping unsigned arithmetic the same keys compiled to a particle fill whose positions differed
+  // by an ulp from before: GCC's contraction of the fill follows the shape of the code.)
   int64_t hash() const {
     int64_t k = 0;
     for (int d = 0; d < Dim; ++d) k = k * 2000003 + c[d];
@@ -201,6 +223,7 @@ Model<Dim> build_model(const json& scene) {
     const auto bb = shape.bounds();
     const double h = m.grid.h;
     std::array<int64_t, Dim> c0, c1;
+    check_lattice_reach<Dim>(bb.lo, bb.hi, m.grid, r.at("shape"), b.name);
     for (int d = 0; d < Dim; ++d) {
       c0[d] = static_cast<int64_t>(std::floor((bb.lo[d] - m.grid.origin[d]) / h)) - 1;
       c1[d] = static_cast<int64_t>(std::ceil((bb.hi[d] - m.grid.origin[d]) / h)) + 1;
@@ -270,8 +293,10 @@ Model<Dim> build_model(const json& scene) {
   auto node_loop = [&](const Vec<Dim>& lo, const Vec<Dim>& hi, auto&& fn) {
     std::array<int, Dim> a, b, ijk;
     for (int d = 0; d < Dim; ++d) {
-      a[d] = std::max(0, static_cast<int>(std::ceil((lo[d] - m.grid.origin[d]) / h - 1e-6)));
-      b[d] = std::min(m.grid.nodes[d] - 1, static_cast<int>(std::floor((hi[d] - m.grid.origin[d]) / h + 1e-6)));
+      // Clamped before the cast: a region may reach beyond int's range of cells (1e300).
+      a[d] = static_cast<int>(std::clamp(std::ceil((lo[d] - m.grid.origin[d]) / h - 1e-6), 0.0, double(m.grid.nodes[d])));
+      b[d] = static_cast<int>(
+          std::clamp(std::floor((hi[d] - m.grid.origin[d]) / h + 1e-6), -1.0, double(m.grid.nodes[d] - 1)));
     }
     int count = 0;
     for (ijk[0] = a[0]; ijk[0] <= b[0]; ++ijk[0])

@@ -32,9 +32,11 @@ const char* const kPdFields[] = {"displacement", "velocity", "damage", "stress",
 // Lattice index of a point: points sit at (k + 1/2) dx on every axis, one lattice for all bodies.
 template <int Dim>
 int64_t lattice_key(const std::array<int64_t, Dim>& q) {
-  int64_t k = 0;
-  for (int d = 0; d < Dim; ++d) k = k * 4000037 + q[d];
-  return k;
+  // Wrapping (unsigned) arithmetic: a body far from the origin overflowed the signed key (undefined
+  // behaviour); keys stay distinct while the points span under about 1e6 sites per axis.
+  uint64_t k = 0;
+  for (int d = 0; d < Dim; ++d) k = k * 4000037u + static_cast<uint64_t>(q[d]);
+  return static_cast<int64_t>(k);
 }
 
 // Memory of a run of `points` points with horizon factor m (bytes), measured as peak RSS of runs
@@ -158,12 +160,21 @@ PdSystem<Dim> build_pd_system(const json& scene) {
     const auto bb = shape->bounds();
     std::array<int64_t, Dim> c0, c1;
     double cells = 1;
+    std::array<double, Dim> lo, hi;
     for (int d = 0; d < Dim; ++d) {
-      c0[d] = static_cast<int64_t>(std::floor(bb.lo[d] / m.dx)) - 1;
-      c1[d] = static_cast<int64_t>(std::ceil(bb.hi[d] / m.dx)) + 1;
-      cells *= double(c1[d] - c0[d]);
+      lo[d] = std::floor(bb.lo[d] / m.dx) - 1;
+      hi[d] = std::ceil(bb.hi[d] / m.dx) + 1;
+      cells *= hi[d] - lo[d];
+      // Lattice indices are int64 and exact in a double: a shape 1e15 spacings from the origin has none.
+      if (!(std::fabs(lo[d]) < 1e15 && std::fabs(hi[d]) < 1e15))
+        throw SceneError(r.at("shape"), "body '" + name + "' lies more than 1e15 lattice spacings from the origin "
+                                        "along axis " + std::string(1, "xyz"[d]) + "; move it or use a coarser " + dx_key);
     }
     if (cells > 2e9) throw SceneError(dx_key, "body '" + name + "' would need more than 2e9 lattice sites");
+    for (int d = 0; d < Dim; ++d) {  // checked above: in int64's range
+      c0[d] = static_cast<int64_t>(lo[d]);
+      c1[d] = static_cast<int64_t>(hi[d]);
+    }
     const std::size_t first = P.size();
     std::array<int64_t, Dim> q;
     for (q[0] = c0[0]; q[0] < c1[0]; ++q[0])
@@ -244,6 +255,21 @@ PdSystem<Dim> build_pd_system(const json& scene) {
   scene::read_loads<Dim>(scene, {units, m.bodies}, "peridynamics", resolvers, refused);
 
   // --- bonds: same body only, minus those crossing a pre-crack -----------------------------------
+  {
+    // build_bonds bins the points in cells of edge delta + dx/2 over their bounding box, at most
+    // max(8 per point, 2^20) cells (pd/bonds.cpp, make_grid; std::invalid_argument beyond): bodies
+    // far apart leave that box nearly empty. Refused here, naming the bodies.
+    Vec<Dim> lo = P.x0[0], hi = P.x0[0];
+    for (const auto& x : P.x0) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    const double edge = m.delta + 0.5 * m.dx, most = std::max(8.0 * double(P.size()), double(1 << 20));
+    double cells = 1.0;
+    for (int d = 0; d < Dim; ++d) cells *= std::floor((hi[d] - lo[d]) / edge) + 1.0;
+    if (cells > most)
+      throw SceneError("bodies", "the points lie too far apart for the bond search (bodies far from one another, or a "
+                                     "shape's far-apart pieces): they span " + scene::fmt(cells) +
+                                     " cells of one horizon, at most " + scene::fmt(most) + " (8 per point) can be "
+                                     "indexed; bring them closer together or use a coarser " + dx_key);
+  }
   BondList<Dim> bl = build_bonds<Dim>(P.x0, m.dx, m.delta);
   std::vector<uint8_t> keep(bl.size(), 1);
   for (std::size_t k = 0; k < bl.size(); ++k)

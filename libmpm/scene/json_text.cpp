@@ -127,6 +127,12 @@ class StrictBuilder {
   }
   bool open(json empty) {
     const std::string path = levels_.empty() ? "" : child_path();
+    if (levels_.size() >= kMaxNesting) {
+      error_.emplace(path, "arrays and objects nested more than " + std::to_string(kMaxNesting) +
+                               " levels deep at " + text_position(text_, static_cast<std::size_t>(read_to_ - text_.data()) - 1) +
+                               " (a scene needs about ten)");
+      return false;
+    }
     levels_.push_back({put(std::move(empty)), path, "", {}});
     return true;
   }

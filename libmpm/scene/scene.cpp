@@ -1,5 +1,6 @@
 #include "libmpm/scene/scene.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -40,21 +41,48 @@ std::string scene_method(const json& scene) {
   return scene["method"].get<std::string>();
 }
 
+// Whether `s` is UTF-8: a scene file's strings are (the parser refuses others), but a --set word is
+// taken as typed, and JSON that holds other bytes cannot be printed (dump() throws).
+static bool is_utf8(const std::string& s) {
+  try {
+    (void)json(s).dump();
+    return true;
+  } catch (const json::type_error&) {
+    return false;
+  }
+}
+
 void apply_override(json& scene, const std::string& kv) {
   const auto eq = kv.find('=');
   if (eq == std::string::npos || eq == 0) throw SceneError(kv, "--set needs KEY=VALUE");
   const std::string key = kv.substr(0, eq), text = kv.substr(eq + 1);
+  if (!is_utf8(key)) throw SceneError("(--set)", "--set key is not UTF-8 text");
+  if (!is_utf8(text)) throw SceneError(key, "--set value is not UTF-8 text");
   json value;
+  std::size_t value_nesting = 0;  // arrays and objects in one another in the value (json_text.hpp)
+  const auto nesting = [&](int depth, json::parse_event_t event, json&) {
+    if (event == json::parse_event_t::object_start || event == json::parse_event_t::array_start) {
+      value_nesting = std::max(value_nesting, static_cast<std::size_t>(depth) + 1);
+      if (value_nesting > scene::kMaxNesting)
+        throw SceneError(key, "--set value nests arrays and objects more than " + std::to_string(scene::kMaxNesting) +
+                                  " levels deep");
+    }
+    return true;
+  };
   try {
-    value = json::parse(text);
+    value = json::parse(text, nesting);
   } catch (const json::out_of_range& e) {  // 1e400: a number, but beyond a double's range
     throw SceneError(key, "--set value " + text + " is out of range (a double holds at most 1.8e308)");
   } catch (const json::exception&) {
     value = text;  // a bare word such as USL
+    value_nesting = 0;
   }
   json* node = &scene;
-  std::size_t i = 0;
+  std::size_t i = 0, levels = 0;  // the containers the value will sit in
   while (i < key.size()) {
+    if (++levels + value_nesting > scene::kMaxNesting)
+      throw SceneError(key, "--set key and value nest arrays and objects more than " + std::to_string(scene::kMaxNesting) +
+                           " levels deep");
     if (key[i] == '[') {
       const auto close = key.find(']', i);
       if (close == std::string::npos) throw SceneError(key, "unclosed '[' in --set key");
