@@ -120,25 +120,34 @@ TEST(Crack3dSlab, ThroughCrackedSlabOpensAsThePlaneStrainDcb) {
   EXPECT_NEAR(o3 / o2, 1.0, 5e-3);
 }
 
+constexpr double h = 1e-3;  // the rigid-motion tests' cell (m)
+
+// A 10 mm aluminium block in 1 mm cells, moving at `velocity`, with a penny crack (radius 3 mm, normal
+// `normal`, frictionless contact) inside it, run to `end` at CFL 0.5.
+json moving_penny_block(const json& grid_min, const json& grid_max, const json& velocity, const json& normal,
+                        double end) {
+  json s;
+  s["analysis"] = {{"type", "3d"}};
+  s["grid"] = {{"min", grid_min}, {"max", grid_max}, {"cell_size", h}};
+  s["mpm"] = {{"shape_function", "linear"}, {"stress_update", "USAVG"}};
+  s["materials"] = json::array({test::material("al", 70e9, 0.33, 2700)});
+  s["bodies"] = json::array({{{"name", "b"}, {"material", "al"},
+                              {"shape", {{"type", "box"}, {"min", {0, 0, 0}}, {"max", {0.01, 0.01, 0.01}}}},
+                              {"velocity", velocity}}});
+  s["cracks"] = json::array({{{"name", "penny"},
+                              {"ellipse", {{"center", {0.0051, 0.0049, 0.0055}}, {"normal", normal}, {"radius", 0.003}}},
+                              {"contact", {{"law", "frictionless"}}}}});
+  s["time"] = {{"end", end}, {"cfl", 0.5}};
+  return s;
+}
+
 // Validation 3: a block with an embedded penny crack moving rigidly: the crack points follow the body
 // (drift below 1e-6 of a cell from the rigid position), the faces do not open, energy stays constant.
 TEST(Crack3dMotion, PennyCrackInATranslatingBlockFollowsItWithoutOpening) {
-  json s;
-  s["analysis"] = {{"type", "3d"}};
-  const double h = 1e-3;
-  s["grid"] = {{"min", {-0.004, -0.003, -0.003}}, {"max", {0.021, 0.013, 0.013}}, {"cell_size", h}};
-  s["mpm"] = {{"shape_function", "linear"}, {"stress_update", "USAVG"}};
-  s["materials"] = json::array({test::material("al", 70e9, 0.33, 2700)});
   const Vec<3> v(500.0, 200.0, -100.0);  // m/s
-  s["bodies"] = json::array({{{"name", "b"}, {"material", "al"},
-                              {"shape", {{"type", "box"}, {"min", {0, 0, 0}}, {"max", {0.01, 0.01, 0.01}}}},
-                              {"velocity", {v.x(), v.y(), v.z()}}}});
-  s["cracks"] = json::array({{{"name", "penny"},
-                              {"ellipse", {{"center", {0.0051, 0.0049, 0.0055}}, {"normal", {0, 0, 1}}, {"radius", 0.003}}},
-                              {"contact", {{"law", "frictionless"}}}}});
-  const double end = 6e-6;  // 3 mm of travel along x: three cells
-  s["time"] = {{"end", end}, {"cfl", 0.5}};
-  Model<3> m = build_model<3>(s);
+  const double end = 6e-6;               // 3 mm of travel along x: three cells
+  Model<3> m = build_model<3>(
+      moving_penny_block({-0.004, -0.003, -0.003}, {0.021, 0.013, 0.013}, {v.x(), v.y(), v.z()}, {0, 0, 1}, end));
   const std::vector<Vec<3>> start = m.cracks[0].points;
   auto st = make_stepper<3>(m);
   const auto e0 = st->global_state();
@@ -165,20 +174,9 @@ TEST(Crack3dMotion, PennyCrackInATranslatingBlockFollowsItWithoutOpening) {
 // to the particles takes their start (to 1e-6 of a cell), with no opening and constant energy.
 TEST(Crack3dMotion, PennyCrackInASlowlyRotatingBlockFollowsItWithoutOpening) {
   const double kW[3] = {3, -2, 5};  // rad/s: 6e-5 rad over the run
-  json s;
-  s["analysis"] = {{"type", "3d"}};
-  const double h = 1e-3;
-  s["grid"] = {{"min", {-0.004, -0.004, -0.004}}, {"max", {0.016, 0.016, 0.016}}, {"cell_size", h}};
-  s["mpm"] = {{"shape_function", "linear"}, {"stress_update", "USAVG"}};
-  s["materials"] = json::array({test::material("al", 70e9, 0.33, 2700)});
-  s["bodies"] = json::array({{{"name", "b"}, {"material", "al"},
-                              {"shape", {{"type", "box"}, {"min", {0, 0, 0}}, {"max", {0.01, 0.01, 0.01}}}},
-                              {"velocity", {100, -50, 30}}, {"angular_velocity", {kW[0], kW[1], kW[2]}}}});
-  s["cracks"] = json::array({{{"name", "penny"},
-                              {"ellipse", {{"center", {0.0051, 0.0049, 0.0055}}, {"normal", {0.2, 0.1, 1}}, {"radius", 0.003}}},
-                              {"contact", {{"law", "frictionless"}}}}});
   const double end = 1e-5;
-  s["time"] = {{"end", end}, {"cfl", 0.5}};
+  json s = moving_penny_block({-0.004, -0.004, -0.004}, {0.016, 0.016, 0.016}, {100, -50, 30}, {0.2, 0.1, 1}, end);
+  s["bodies"][0]["angular_velocity"] = {kW[0], kW[1], kW[2]};
   Model<3> m = build_model<3>(s);
   const auto& P = m.particles;
   const std::vector<Vec<3>> X = P.x, start = m.cracks[0].points;
@@ -231,7 +229,6 @@ class CollidingCrackedBlocks : public ::testing::TestWithParam<LawDetection> {};
 
 TEST_P(CollidingCrackedBlocks, ConserveMomentumAndKeepTheirCrackFacesApart) {
   const auto [law, detection] = GetParam();
-  const double h = 1e-3;
   json s;
   s["analysis"] = {{"type", "3d"}};
   s["grid"] = {{"min", {-0.003, -0.003, -0.003}}, {"max", {0.011, 0.011, 0.016}}, {"cell_size", h}};

@@ -195,9 +195,8 @@ class SpatialIndex : public GridCells<Dim> {
     };
     std::vector<Span> spans;
     int blo[3] = {cells_[0], cells_[1], cells_[2]}, bhi[3] = {-1, -1, -1};
-    auto span_of = [&](const crack::ExplicitCrack<Dim>& c, const std::array<int32_t, Dim>& t) {
-      const V lo = c.points[t[0]].cwiseMin(c.points[t[1]]).cwiseMin(c.points[t[2]]).array() - grow;
-      const V hi = c.points[t[0]].cwiseMax(c.points[t[1]]).cwiseMax(c.points[t[2]]).array() + grow;
+    auto span_of = [&](std::size_t ci, std::size_t t) {  // triangle t's box grown by kReach cells, in cells
+      const V lo = tri_lo_[ci][t].array() - grow, hi = tri_hi_[ci][t].array() + grow;
       Span sp;
       for (int d = 0; d < 3; ++d) {
         sp.lo[d] = std::max(0, static_cast<int>(std::floor((lo[d] - G_.origin[d]) * inv_h_)));
@@ -223,9 +222,9 @@ class SpatialIndex : public GridCells<Dim> {
         tri_hi_[ci][t] = c.points[T[0]].cwiseMax(c.points[T[1]]).cwiseMax(c.points[T[2]]);
       }
     }
-    for (const auto& c : cracks_)
-      for (const auto& t : c.simplices) {
-        const Span sp = span_of(c, t);
+    for (std::size_t ci = 0; ci < cracks_.size(); ++ci)
+      for (std::size_t t = 0; t < cracks_[ci].simplices.size(); ++t) {
+        const Span sp = span_of(ci, t);
         spans.push_back(sp);
         for (int d = 0; d < 3; ++d)
           if (sp.lo[d] <= sp.hi[d]) blo[d] = std::min(blo[d], sp.lo[d]), bhi[d] = std::max(bhi[d], sp.hi[d]);
@@ -258,15 +257,9 @@ class SpatialIndex : public GridCells<Dim> {
       for (int32_t a = cell_offset_[k]; a < cell_offset_[k + 1];) {
         const int32_t ci = tri_crack[a];
         int32_t b = a;
-        const auto& c = cracks_[ci];
         V lo = V::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-        while (b < cell_offset_[k + 1] && tri_crack[b] == ci) {
-          for (int v = 0; v < 3; ++v) {
-            const V& x = c.points[c.simplices[tri_ids_[b]][v]];
-            lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-          }
-          ++b;
-        }
+        for (; b < cell_offset_[k + 1] && tri_crack[b] == ci; ++b)
+          lo = lo.cwiseMin(tri_lo_[ci][tri_ids_[b]]), hi = hi.cwiseMax(tri_hi_[ci][tri_ids_[b]]);
         entries_.push_back({ci, a, b - 1, cell_head_[cell], lo, hi});
         cell_head_[cell] = static_cast<int32_t>(entries_.size() - 1);
         a = b;
