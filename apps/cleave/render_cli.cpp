@@ -28,7 +28,7 @@ Frames and image:
   --frame SPEC         the same, for compare (one frame)
   --size WxH           image size in pixels (default 1280x720)
   --images DIR         where PNGs go (default OUT/render)
-  --length-unit U      unit of --roi, --map, --cut-plane and --points coordinates: m (default), mm, cm, um
+  --length-unit U      unit of --roi, --map, --cut-plane, --slice and --points: m (default), mm, cm, um
   --roi X0,Y0,X1,Y1    region of interest in model coordinates
   --zoom Z             zoom about the window centre (default 1)
   --background C       white (default) | black | gray | R,G,B (0-1)
@@ -50,14 +50,20 @@ Photoelastic fringes (per pixel from the stress at that pixel):
   --fringes MODE       dark | light (circular polariscope) | crossed | parallel (plane, with
                        isoclinics) | seed002 (cos(k_f dsigma), seed 002 eq. 23)
   --white-light        white light (CIE 1931 observer, D65): Michel-Levy colours
-  --thickness MM       specimen thickness in mm (default 1)
+  --thickness MM       specimen thickness in mm (default 1; a --slice is its own thickness)
   --fringe-constant F  material fringe constant f_sigma in N/mm/fringe at the wavelength
   --stress-optic C     stress-optic coefficient in Brewster (1e-12 /Pa), instead of F
   --wavelength NM      monochromatic wavelength in nm (default 546)
   --polarizer DEG      plane polariscope axis from x, degrees (default 0)
   --kf K               seed002 constant in 1/MPa (default 0.0889)
-3D series:
-  --cut-plane PX,PY,PZ,NX,NY,NZ   render the section through point P with normal N
+3D series (docs/rendering.md, "3D cracks"):
+  --cut-plane PX,PY,PZ,NX,NY,NZ   render the section through point P with normal N: the particle
+                       layer at the plane, with the traces of the crack faces (red above, blue below)
+  --slice T            with --cut-plane: a frozen-stress slice of thickness T (in --length-unit)
+                       centred on the plane: the in-plane stress averaged through it, fringes with T
+                       as the specimen thickness (not with --thickness)
+  --opening-scale K    crack faces drawn with the opening K times what it is (default 1), over the
+                       cubes (red above, blue below; shaded when K != 1) and in sections
   --camera NAME        iso (default) | xy | xz | yz   (without a cut plane: particles as cubes)
   --view PX,PY,PZ,FX,FY,FZ,UX,UY,UZ   explicit camera: position, focal point, view-up
                        (in --length-unit), perspective
@@ -108,6 +114,8 @@ int viz_command(const std::vector<std::string>& args) {
   std::optional<std::string> photo, points, map, other_run;
   std::string out_prefix;
   std::optional<double> cod_time;
+  bool thickness_given = false;
+  std::optional<std::string> slice;  // in --length-unit, read once the unit is known
   double thickness_mm = 1.0, fringe_constant = 0, brewster = 0, wavelength_nm = 546, polarizer_deg = 0, kf = 0.0889;
   try {
     for (std::size_t i = 2; i < args.size(); ++i) {
@@ -170,7 +178,12 @@ int viz_command(const std::vector<std::string>& args) {
         o.fringes = true;
         o.photo.mode = *p;
       } else if (a == "--white-light") o.photo.white_light = o.fringes = true;
-      else if (a == "--thickness") thickness_mm = number(a, value());
+      else if (a == "--thickness") thickness_mm = number(a, value()), thickness_given = true;
+      else if (a == "--slice") slice = value();
+      else if (a == "--opening-scale") {
+        o.opening_scale = number(a, value());
+        if (!(o.opening_scale > 0)) throw std::invalid_argument("--opening-scale must be positive (1: the opening as it is)");
+      }
       else if (a == "--fringe-constant") fringe_constant = number(a, value());
       else if (a == "--stress-optic") brewster = number(a, value());
       else if (a == "--wavelength") wavelength_nm = number(a, value());
@@ -202,6 +215,14 @@ int viz_command(const std::vector<std::string>& args) {
         const auto c = numbers(opt, v, 6, 6);
         o.cut_plane = std::array<double, 6>{c[0] * L, c[1] * L, c[2] * L, c[3], c[4], c[5]};
       }
+    }
+    if (slice) {
+      const double t = number("--slice", *slice);
+      if (!(t > 0)) throw std::invalid_argument("--slice must be a positive thickness");
+      if (!o.cut_plane) throw std::invalid_argument("--slice needs --cut-plane (the slice is centred on that plane)");
+      if (thickness_given)
+        throw std::invalid_argument("--slice sets the specimen thickness of the fringes: leave out --thickness");
+      o.slice = t * L;
     }
     if (!(thickness_mm > 0)) throw std::invalid_argument("--thickness must be positive (mm)");
     if (!(wavelength_nm > 0)) throw std::invalid_argument("--wavelength must be positive (nm)");

@@ -1,14 +1,10 @@
 #include "viz/job/render_job.hpp"
 
-#include <vtkCellArray.h>
-#include <vtkCellType.h>
 #include <vtkDataArray.h>
-#include <vtkIdList.h>
 #include <vtkPointData.h>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
-#include <vtkXMLUnstructuredGridReader.h>
 
 #include <algorithm>
 #include <cctype>
@@ -20,10 +16,11 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "libmpm/io/pvd_writer.hpp"
 #include "viz/job/colour_scale.hpp"
+#include "viz/job/crack_frames.hpp"
 #include "viz/job/movie.hpp"
 #include "viz/optics/colormap.hpp"
+#include "viz/raster/slice.hpp"
 #include "viz/raster/smooth.hpp"
 
 namespace cleave::viz {
@@ -31,75 +28,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The frame of OUT/cracks.pvd nearest to time t; null when the run has no crack series.
-struct CrackFrame {
-  vtkSmartPointer<vtkUnstructuredGrid> grid;
-  double time = 0;
-  fs::path file;
-};
-CrackFrame nearest_crack_frame(const fs::path& dir, double t) {
-  CrackFrame cf;
-  const fs::path pvd = dir / "cracks.pvd";
-  if (!fs::exists(pvd)) return cf;
-  const auto idx = io::PvdIndex::load(pvd);
-  if (idx.entries().empty()) return cf;
-  auto best = idx.entries().front();
-  for (const auto& e : idx.entries())
-    if (std::fabs(e.first - t) < std::fabs(best.first - t)) best = e;
-  vtkNew<vtkXMLUnstructuredGridReader> r;
-  cf.file = dir / best.second;
-  r->SetFileName(cf.file.c_str());
-  r->Update();
-  cf.grid = r->GetOutput();
-  cf.time = best.first;
-  return cf;
-}
-
-// The 2D crack paths of a crack frame, as point ids in order along each crack. Cracks are written
-// as VTK_LINE segments in path order (meshio reads no poly-lines), so a segment that starts where
-// the previous one ended continues its path; a VTK_POLY_LINE cell (files of Cleave before issue 15)
-// is a whole path, a vertex a one-point crack. Other cells (3D crack triangles) are no paths.
-std::vector<std::vector<vtkIdType>> crack_paths(vtkUnstructuredGrid* g) {
-  std::vector<std::vector<vtkIdType>> paths;
-  bool open = false;  // the last path may go on with a segment
-  for (vtkIdType c = 0; c < g->GetNumberOfCells(); ++c) {
-    const int type = g->GetCellType(c);
-    if (type != VTK_LINE && type != VTK_POLY_LINE && type != VTK_VERTEX) {
-      open = false;
-      continue;
-    }
-    vtkNew<vtkIdList> ids;
-    g->GetCellPoints(c, ids);
-    if (ids->GetNumberOfIds() == 0) continue;
-    vtkIdType k = 0;
-    if (type == VTK_LINE && open && paths.back().back() == ids->GetId(0)) k = 1;  // continues the path
-    else paths.emplace_back();
-    for (; k < ids->GetNumberOfIds(); ++k) paths.back().push_back(ids->GetId(k));
-    open = type == VTK_LINE;
-  }
-  return paths;
-}
-
-// The crack paths of the crack frame nearest to time t (none when the series has no cracks).
-std::vector<Polyline2D> crack_overlays(const fs::path& dir, double t) {
-  std::vector<Polyline2D> out;
-  const CrackFrame cf = nearest_crack_frame(dir, t);
-  if (!cf.grid) return out;
-  vtkUnstructuredGrid* g = cf.grid;
-  for (const auto& path : crack_paths(g)) {
-    Polyline2D pl;
-    pl.colour = {0.9, 0.1, 0.1};
-    for (vtkIdType id : path) {
-      double x[3];
-      g->GetPoint(id, x);
-      pl.points.push_back({x[0], x[1]});
-    }
-    out.push_back(std::move(pl));
-  }
-  return out;
-}
-
 fs::path series_dir(const fs::path& p) { return fs::is_directory(p) ? p : p.parent_path(); }
+
+// The options of 3D cracks and slices, named as the command line names them.
+void check_crack_options(const RenderOptions& o) {
+  if (!(o.opening_scale > 0) || !std::isfinite(o.opening_scale))
+    throw std::invalid_argument("--opening-scale must be a positive number (1: the opening as it is)");
+  if (o.slice) {
+    if (!(*o.slice > 0) || !std::isfinite(*o.slice)) throw std::invalid_argument("--slice must be a positive thickness");
+    if (!o.cut_plane) throw std::invalid_argument("--slice needs --cut-plane (the slice is centred on that plane)");
+  }
+}
 
 // Space around the bodies, of the box's larger side: a figure's tight frame, or the room an image of
 // a given size has anyway.
@@ -128,11 +67,19 @@ ParticleFrame drawn_frame(const ParticleFrame& f, const RenderOptions& o) {
   if (!(o.smooth > 0) || f.dim != 2) return f;
   SmoothSettings s;
   s.sigma = o.smooth;
-  // Crack paths are barriers: the stress is not averaged from one face of a crack to the other.
-  if (!o.series.empty())
-    for (const Polyline2D& pl : crack_overlays(series_dir(o.series), f.time))
-      for (std::size_t i = 0; i + 1 < pl.points.size(); ++i)
-        s.barriers.push_back({pl.points[i][0], pl.points[i][1], pl.points[i + 1][0], pl.points[i + 1][1]});
+  // Cracks are barriers: the stress is not averaged from one face of a crack to the other. A 2D
+  // frame has crack paths; a section of a 3D frame the traces of the crack faces where they are.
+  if (!o.series.empty()) {
+    const fs::path dir = series_dir(o.series);
+    if (const CrackFrame cf = nearest_crack_frame(dir, f.time); o.cut_plane && cf.grid && has_crack_surfaces(cf.grid)) {
+      const auto& c = *o.cut_plane;
+      s.barriers = section_barriers(crack_surfaces(cf.grid), {c[0], c[1], c[2]}, {c[3], c[4], c[5]});
+    } else if (cf.grid) {
+      for (const Polyline2D& pl : crack_overlays(cf.grid))
+        for (std::size_t i = 0; i + 1 < pl.points.size(); ++i)
+          s.barriers.push_back({pl.points[i][0], pl.points[i][1], pl.points[i + 1][0], pl.points[i + 1][1]});
+    }
+  }
   return smooth_stress(f, s);
 }
 
@@ -203,7 +150,10 @@ std::string frame_file_name(const std::string& prefix, std::size_t index) {
   return name;
 }
 
-RenderResult render_series(const RenderOptions& o, const std::function<void(std::size_t, std::size_t)>& progress) {
+RenderResult render_series(const RenderOptions& options, const std::function<void(std::size_t, std::size_t)>& progress) {
+  check_crack_options(options);
+  RenderOptions o = options;
+  if (o.slice) o.photo.thickness = *o.slice;  // a slice's fringes: its own thickness
   const auto entries = read_series(o.series);
   const auto sel = select_frames(entries, o.frames);
   if (sel.empty()) throw std::invalid_argument("frame selection '" + o.frames + "' selects no frame");
@@ -219,9 +169,13 @@ RenderResult render_series(const RenderOptions& o, const std::function<void(std:
   for (std::size_t k = 0; k < sel.size(); ++k) {
     const auto& e = entries[sel[k]];
     ParticleFrame f = read_particle_frame(e.file, e.time);
-    if (f.dim == 3 && o.cut_plane) {
+    if (o.slice && f.dim != 3)
+      throw std::invalid_argument("--slice needs a 3D series; " + e.file.string() + " is 2D");
+    const bool section = f.dim == 3 && o.cut_plane;
+    if (section) {
       const auto& c = *o.cut_plane;
-      f = cut_plane(f, {c[0], c[1], c[2]}, {c[3], c[4], c[5]});
+      f = o.slice ? slice_plane(f, {c[0], c[1], c[2]}, {c[3], c[4], c[5]}, *o.slice)
+                  : cut_plane(f, {c[0], c[1], c[2]}, {c[3], c[4], c[5]});
     }
     Image out;
     const std::string stamp = o.time_stamp ? format_time(e.time) : "";
@@ -237,17 +191,11 @@ RenderResult render_series(const RenderOptions& o, const std::function<void(std:
       Camera3D cam;
       cam.preset = o.camera;
       cam.explicit_view = o.view;
-      // Crack surfaces (triangle cells of the crack frame nearest in time) over the particles.
-      std::vector<std::array<std::array<double, 3>, 3>> tris;
+      // The crack faces (triangles of the crack frame nearest in time) over the particles.
+      CrackSurfaces3D faces;
       if (const CrackFrame cf = nearest_crack_frame(dir, e.time); cf.grid)
-        for (vtkIdType c = 0; c < cf.grid->GetNumberOfCells(); ++c) {
-          vtkCell* cell = cf.grid->GetCell(c);
-          if (cell->GetNumberOfPoints() != 3) continue;
-          std::array<std::array<double, 3>, 3> t;
-          for (int k = 0; k < 3; ++k) cf.grid->GetPoint(cell->GetPointId(k), t[k].data());
-          tris.push_back(t);
-        }
-      out = render_particles_3d(ctx, centres, edge, colours, cam, o.title, stamp, bar, o.background, tris);
+        faces = crack_faces_3d(crack_surfaces(cf.grid), o.opening_scale);
+      out = render_particles_3d(ctx, centres, edge, colours, cam, o.title, stamp, bar, o.background, faces);
     } else {
       Frame2D fr;
       fr.title = o.title;
@@ -272,7 +220,11 @@ RenderResult render_series(const RenderOptions& o, const std::function<void(std:
       const View v = fit_view(f, std::max(1, rect.width), std::max(1, rect.height), o.roi, o.zoom, margin);
       fr.field = field_image(f, v, o, fr.colorbar);
       fr.x0 = v.x0, fr.y0 = v.y0, fr.x1 = v.x1, fr.y1 = v.y1;
-      if (!o.cut_plane) fr.overlays = crack_overlays(dir, e.time);
+      if (!section) {
+        fr.overlays = crack_overlays(dir, e.time);
+      } else if (const CrackFrame cf = nearest_crack_frame(dir, e.time); cf.grid && has_crack_surfaces(cf.grid)) {
+        fr.overlays = section_overlays(crack_surfaces(cf.grid), o.opening_scale, *o.cut_plane);
+      }
       out = render_frame_2d(ctx, fr);
     }
     const fs::path file = images / frame_file_name(prefix, sel[k]);

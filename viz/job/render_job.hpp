@@ -37,6 +37,13 @@ struct RenderOptions {
   PhotoelasticSettings photo;
   // 3D: cut plane (point, normal) renders a 2D section; otherwise particles as cubes.
   std::optional<std::array<double, 6>> cut_plane;
+  // 3D cracks (docs/rendering.md, "3D cracks"): their two faces are drawn with the opening K times
+  // what it is (viz/raster/crack_section.hpp), over the cubes and as traces in sections. > 0.
+  double opening_scale = 1.0;
+  // With cut_plane: a frozen-stress slice of this thickness (m, > 0) centred on the plane instead
+  // of the one-particle section (viz/raster/slice.hpp); fringes take it as the specimen thickness
+  // (photo.thickness is not used).
+  std::optional<double> slice;
   std::string camera = "iso";
   std::optional<std::array<double, 9>> view;   // explicit camera: position, focal point, view-up
   // Movie: encoded with ffmpeg from the PNG frames, which are kept.
@@ -62,8 +69,9 @@ RenderResult render_series(const RenderOptions&, const std::function<void(std::s
 // drawn_frame, the smooth outline when o.outline.
 Image field_image(const ParticleFrame&, const View&, const RenderOptions&, ColorBar& bar);
 
-// The frame as it is drawn: its stress smoothed over o.smooth particle spacings, with the crack
-// paths of the series at the frame's time as barriers (smooth_stress); as it is when o.smooth <= 0.
+// The frame as it is drawn: its stress smoothed over o.smooth particle spacings, with the cracks of
+// the series at the frame's time as barriers (smooth_stress): the crack paths of a 2D frame, the
+// traces of the 3D crack faces in o.cut_plane for a section; as it is when o.smooth <= 0.
 ParticleFrame drawn_frame(const ParticleFrame&, const RenderOptions&);
 
 // Per-pixel in-plane stress (sxx, syy, sxy; a section's "stress_uv") of a frame: Raster with k = 3.

@@ -91,18 +91,8 @@ ParticleFrame cut_plane(const ParticleFrame& f, std::array<double, 3> point, std
     b.components = 3;
     b.values.resize(keep.size() * 3);
     for (std::size_t i = 0; i < keep.size(); ++i) {
-      const double* e = &t6->values[keep[i] * c];
-      // VTK order XX, YY, ZZ, XY, YZ, XZ.
-      const double E[3][3] = {{e[0], e[3], e[5]}, {e[3], e[1], e[4]}, {e[5], e[4], e[2]}};
-      auto quad = [&](const std::array<double, 3>& a, const std::array<double, 3>& bb) {
-        double r = 0;
-        for (int r0 = 0; r0 < 3; ++r0)
-          for (int c0 = 0; c0 < 3; ++c0) r += a[static_cast<std::size_t>(r0)] * E[r0][c0] * bb[static_cast<std::size_t>(c0)];
-        return r;
-      };
-      b.values[3 * i] = quad(u, u);
-      b.values[3 * i + 1] = quad(w, w);
-      b.values[3 * i + 2] = quad(u, w);
+      const auto t = detail::in_plane_tensor(&t6->values[keep[i] * c], u, w);
+      std::copy(t.begin(), t.end(), &b.values[3 * i]);
     }
     out.arrays[std::string(name) + "_uv"] = std::move(b);
   }

@@ -29,6 +29,20 @@ inline bool finite3(const std::array<double, 3>& p) {
 // The array `name` if it has at least `comps` components and one tuple per particle.
 const PointArray* array_with(const ParticleFrame& f, const char* name, int comps);
 
+// A symmetric tensor of six components in VTK order (xx, yy, zz, xy, yz, xz) in a plane's axes
+// (u, w unit vectors in the plane): {uu, ww, uw}, what a section's "strain_uv" and "stress_uv" hold.
+inline std::array<double, 3> in_plane_tensor(const double* e, const std::array<double, 3>& u,
+                                             const std::array<double, 3>& w) {
+  const double E[3][3] = {{e[0], e[3], e[5]}, {e[3], e[1], e[4]}, {e[5], e[4], e[2]}};
+  auto quad = [&](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    double r = 0;
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = 0; j < 3; ++j) r += a[i] * E[i][j] * b[j];
+    return r;
+  };
+  return {quad(u, u), quad(w, w), quad(u, w)};
+}
+
 // Footprint of a particle: centre (x, y), domain edge s, bounding half-extents (hx, hy) and the
 // map a = (F s)^-1 from model offsets to footprint coordinates (the footprint is |a (x - c)| <= 1/2
 // in both components), F = R(rotation) (I + strain).

@@ -126,17 +126,31 @@ struct Camera3D {
   std::optional<std::array<double, 9>> explicit_view;
 };
 
+// A crack face drawn over 3D particles: a triangle mesh (triangles index points) in one colour.
+struct CrackFace3D {
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  std::array<double, 3> colour{0.9, 0.1, 0.1};  // RGB in [0, 1]
+};
+// Crack faces in drawing order: where two coincide, the earlier one shows. shaded: lit by the
+// headlight (ambient 0.4, diffuse 0.6, smooth normals), so the shape of a face shows; otherwise
+// flat, unlit colours.
+struct CrackSurfaces3D {
+  std::vector<CrackFace3D> faces;
+  bool shaded = false;
+};
+
 // Particles as cubes of edge edge[i] centred at centres[i] with colour colours[i] (vtkGlyph3DMapper,
 // lit by a headlight: faces square to the view show their colour exactly). Presets fit the camera to
 // the particles. Title, time stamp and colour bar as in render_frame_2d. Throws
 // std::invalid_argument when the three arrays differ in length or a preset is unknown.
-// crack_triangles: crack surfaces, drawn in red over the particles (always visible, as an overlay
-// layer with the same camera), so embedded cracks show through the body.
+// cracks: crack faces, drawn over the particles (always visible, as an overlay layer with the same
+// camera; the faces hide each other by depth), so embedded cracks show through the body.
 Image render_particles_3d(HeadlessContext& context, const std::vector<std::array<double, 3>>& centres,
                           const std::vector<double>& edge, const std::vector<std::array<uint8_t, 3>>& colours,
                           const Camera3D& camera, const std::string& title, const std::string& time_stamp,
                           const ColorBar& colorbar, std::array<double, 3> background,
-                          const std::vector<std::array<std::array<double, 3>, 3>>& crack_triangles = {});
+                          const CrackSurfaces3D& cracks = {});
 
 // --- plots -------------------------------------------------------------------------------------
 

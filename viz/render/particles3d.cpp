@@ -3,6 +3,7 @@
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
+#include <vtkCellData.h>
 #include <vtkCellArray.h>
 #include <vtkCubeSource.h>
 #include <vtkDoubleArray.h>
@@ -12,8 +13,10 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
+#include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
@@ -27,11 +30,67 @@ namespace cleave::viz {
 
 using namespace detail;
 
+namespace {
+
+// All faces in one actor, cells in order with their colours: VTK draws a mapper's cells in order and
+// a fragment at the depth of one drawn before it does not replace it, so where two faces coincide
+// (an unopened crack) the earlier one shows, and where they are apart the nearer one does (test
+// CrackFaces3D.AnUnopenedCrackAtScaleOneIsDrawnRedAsBeforeItsFacesWereDrawnApart).
+vtkSmartPointer<vtkActor> crack_actor(const CrackSurfaces3D& cracks) {
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> tris;
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetName("rgb");
+  rgb->SetNumberOfComponents(3);
+  for (const CrackFace3D& f : cracks.faces) {
+    const vtkIdType first = pts->GetNumberOfPoints();
+    for (const auto& p : f.points) pts->InsertNextPoint(p[0], p[1], p[2]);
+    std::array<uint8_t, 3> c;
+    for (std::size_t k = 0; k < 3; ++k) c[k] = uint8_t(std::lround(255 * std::clamp(f.colour[k], 0.0, 1.0)));
+    for (const auto& t : f.triangles) {
+      if (t[0] >= f.points.size() || t[1] >= f.points.size() || t[2] >= f.points.size()) continue;
+      const vtkIdType ids[3] = {first + vtkIdType(t[0]), first + vtkIdType(t[1]), first + vtkIdType(t[2])};
+      tris->InsertNextCell(3, ids);
+      rgb->InsertNextTypedTuple(c.data());
+    }
+  }
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(pts);
+  pd->SetPolys(tris);
+  pd->GetCellData()->SetScalars(rgb);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->ScalarVisibilityOn();
+  mapper->SetScalarModeToUseCellData();
+  mapper->SetColorModeToDirectScalars();
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  if (cracks.shaded) {
+    // Smooth point normals per face (faces share no points), so a bulging face shades smoothly.
+    vtkNew<vtkPolyDataNormals> normals;
+    normals->SetInputData(pd);
+    normals->SplittingOff();
+    normals->ConsistencyOff();
+    normals->ComputePointNormalsOn();
+    normals->Update();
+    mapper->SetInputData(normals->GetOutput());
+    actor->GetProperty()->SetAmbient(0.4);
+    actor->GetProperty()->SetDiffuse(0.6);
+    actor->GetProperty()->SetSpecular(0);
+  } else {
+    mapper->SetInputData(pd);
+    actor->GetProperty()->LightingOff();
+  }
+  return actor;
+}
+
+}  // namespace
+
 Image render_particles_3d(HeadlessContext& context, const std::vector<std::array<double, 3>>& centres,
                           const std::vector<double>& edge, const std::vector<std::array<uint8_t, 3>>& colours,
                           const Camera3D& camera, const std::string& title, const std::string& time_stamp,
                           const ColorBar& colorbar, std::array<double, 3> background,
-                          const std::vector<std::array<std::array<double, 3>, 3>>& crack_triangles) {
+                          const CrackSurfaces3D& cracks) {
   if (edge.size() != centres.size() || colours.size() != centres.size())
     throw std::invalid_argument("render_particles_3d: " + std::to_string(centres.size()) + " centres, " +
                                 std::to_string(edge.size()) + " edges, " + std::to_string(colours.size()) +
@@ -94,27 +153,11 @@ Image render_particles_3d(HeadlessContext& context, const std::vector<std::array
     view->AddActor(actor);
   }
 
-  if (!crack_triangles.empty()) {
-    vtkRenderer* cracks = scene.add(1, background);
-    set_viewport_pixels(cracks, W, H, 0, 0, std::max(1, W - l.cbar_band), std::max(1, H - l.title_band));
-    cracks->SetActiveCamera(view->GetActiveCamera());
-    vtkNew<vtkPoints> pts;
-    vtkNew<vtkCellArray> tris;
-    for (const auto& t : crack_triangles) {
-      tris->InsertNextCell(3);
-      for (const auto& p : t) tris->InsertCellPoint(pts->InsertNextPoint(p[0], p[1], p[2]));
-    }
-    vtkNew<vtkPolyData> pd;
-    pd->SetPoints(pts);
-    pd->SetPolys(tris);
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputData(pd);
-    mapper->ScalarVisibilityOff();
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
-    actor->GetProperty()->SetColor(0.9, 0.1, 0.1);
-    actor->GetProperty()->LightingOff();
-    cracks->AddActor(actor);
+  if (!cracks.faces.empty()) {
+    vtkRenderer* layer = scene.add(1, background);
+    set_viewport_pixels(layer, W, H, 0, 0, std::max(1, W - l.cbar_band), std::max(1, H - l.title_band));
+    layer->SetActiveCamera(view->GetActiveCamera());
+    layer->AddActor(crack_actor(cracks));
   }
 
   vtkCamera* cam = view->GetActiveCamera();
