@@ -1,5 +1,5 @@
 // Running the built cleave program from a test: its exit code and what it printed, a directory per
-// test, and a scene long enough to be stopped. Used by the CLI, run-fault and renderer CLI tests.
+// test, a scene that runs at once and one long enough to be stopped. Used by the CLI, run-fault and renderer CLI tests.
 #pragma once
 #include <sys/wait.h>
 
@@ -66,6 +66,21 @@ class CliTest : public ::testing::Test {
  private:
   std::string prefix_;
 };
+
+// A 0.1 x 0.05 m steel block in 1 cm cells moving at (1, 0.5) m/s: 200 particles, about three dozen
+// steps, 4 frames (t = 0 and every 10 us to 30 us). The CLI tests' scene that runs at once.
+inline nlohmann::json tiny_scene() {
+  return nlohmann::json::parse(R"({
+    "title": "tiny",
+    "analysis": {"type": "plane_strain"},
+    "resolution": 0.01,
+    "materials": [{"name": "steel", "type": "linear_elastic", "E": 2e11, "nu": 0.3, "density": 7800}],
+    "bodies": [{"name": "block", "material": "steel", "velocity": [1, 0.5],
+                "shape": {"type": "rectangle", "min": [0, 0], "max": [0.1, 0.05]}}],
+    "time": {"end": 3e-5},
+    "output": {"interval": 1e-5}
+  })");
+}
 
 // A 0.2 x 0.1 m steel block in 4 mm cells (5000 particles, about 3 steps a microsecond) moving at
 // 5 m/s onto a symmetry plane, for `end` seconds with frames every `interval`: a run that takes

@@ -18,18 +18,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using cleave::test::Result;
 
-// 200 particles, about three dozen steps, 4 frames.
-json tiny_scene() {
-  return json::parse(R"({
-    "analysis": {"type": "plane_strain"},
-    "resolution": 0.01,
-    "materials": [{"name": "steel", "type": "linear_elastic", "E": 2e11, "nu": 0.3, "density": 7800}],
-    "bodies": [{"name": "block", "material": "steel", "velocity": [1, 0.5],
-                "shape": {"type": "rectangle", "min": [0, 0], "max": [0.1, 0.05]}}],
-    "time": {"end": 3e-5},
-    "output": {"interval": 1e-5}
-  })");
-}
+using cleave::test::tiny_scene;  // 200 particles, about three dozen steps, 4 frames
 
 class CliInput : public cleave::test::CliTest {
  protected:
@@ -114,6 +103,24 @@ TEST_F(CliInput, CheckPrintsTheEstimateOfPointsMemoryAndOutput) {
   // --force is an option of run; the tiny run fits anyway.
   const Result run = cleave("run tiny.json --out out --quiet --force");
   EXPECT_EQ(run.code, 0) << run.err;
+}
+
+TEST_F(CliInput, CheckNamesTheOutputEncodingAndCallsTheZlibFigureAnUpperBound) {
+  write("tiny.json", tiny_scene().dump());
+  const Result raw = cleave("check tiny.json");
+  EXPECT_EQ(raw.code, 0) << raw.err;
+  EXPECT_TRUE(has(raw.out, "output encoding: raw, float64 (output.compression \"none\", output.precision \"float64\")\n"))
+      << raw.out;
+  EXPECT_TRUE(has(raw.out, "estimate: about ")) << raw.out;
+  const Result packed = cleave("check tiny.json --set output.compression=zlib --set output.precision=float32");
+  EXPECT_EQ(packed.code, 0) << packed.err;
+  EXPECT_TRUE(has(packed.out, "output encoding: zlib, float32 (output.compression \"zlib\", output.precision \"float32\")"))
+      << packed.out;
+  EXPECT_TRUE(has(packed.out, "half of float64's")) << packed.out;
+  EXPECT_TRUE(has(packed.out, "the output figure is an upper bound: zlib's sizes depend on the data")) << packed.out;
+  EXPECT_TRUE(has(packed.out, "estimate: at most ")) << packed.out;
+  EXPECT_TRUE(has(packed.out, " of output: 4 frames x")) << packed.out;
+  EXPECT_TRUE(written().empty()) << "check writes nothing";
 }
 
 TEST_F(CliInput, ASceneNeedingMoreMemoryThanTheMachineHasExits2AtOnce) {

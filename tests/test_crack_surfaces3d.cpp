@@ -10,6 +10,7 @@
 #include <map>
 #include <numbers>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <Eigen/Geometry>
@@ -182,6 +183,10 @@ TEST(CrackSurfaces3D, BadSurfacesAreRefusedNamingTheCrackAndTheTriangle) {
   EXPECT_NE(err(R"([{"name": "a", "mesh": {"points": [[0,0,0],[1,0,0],[0,1,0]], "triangles": [[0,1,3]]}}])")
                 .find("cracks[0].mesh.triangles[0][2]"),
             std::string::npos);
+  // An index above 2^63 (nlohmann keeps it unsigned) is refused as given, not wrapped to -1.
+  EXPECT_NE(err(R"([{"name": "a", "mesh": {"points": [[0,0,0],[1,0,0],[0,1,0]], "triangles": [[0,1,18446744073709551615]]}}])")
+                .find("cracks[0].mesh.triangles[0][2]: expected a point index from 0 to 2 (got 18446744073709551615)"),
+            std::string::npos);
   EXPECT_NE(err(R"([{"name": "a", "quad": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "ellipse": {}}])").find("not both"),
             std::string::npos);
   EXPECT_NE(err(R"([{"name": "a"}])").find("missing the surface"), std::string::npos);
@@ -245,6 +250,41 @@ endsolid square
   }
   expect_unit_square(read_mesh_file(write("b.stl", bin), "cracks[0].file"));
   EXPECT_THROW(read_mesh_file(write("t.stl", bin.substr(0, 120)), "cracks[0].file"), SceneError);  // truncated
+}
+
+// What is not a regular file, or is larger than the cap, is refused before a byte of it is read:
+// "/dev/zero" was read until memory ran out, and a FIFO blocks the reader for ever (issue 15).
+TEST_F(MeshFiles, ADeviceAFifoOrAFileOverOneGibIsRefusedNamingTheCrackKeyAndTheFile) {
+  auto refusal = [](const std::filesystem::path& f) {
+    try {
+      read_mesh_file(f, "cracks[0].file");
+    } catch (const SceneError& e) {
+      return e;
+    }
+    return SceneError("(accepted)", "");
+  };
+  auto has = [](const std::string& text, const std::string& word) { return text.find(word) != std::string::npos; };
+  std::filesystem::create_symlink("/dev/zero", dir / "zero.stl");
+  const SceneError zero = refusal(dir / "zero.stl");
+  EXPECT_EQ(zero.key_path(), "cracks[0].file");
+  EXPECT_TRUE(has(zero.reason(), (dir / "zero.stl").string() + ": not a regular file")) << zero.reason();
+  ASSERT_EQ(::mkfifo((dir / "pipe.msh").c_str(), 0600), 0);
+  const SceneError fifo = refusal(dir / "pipe.msh");
+  EXPECT_EQ(fifo.key_path(), "cracks[0].file");
+  EXPECT_TRUE(has(fifo.reason(), (dir / "pipe.msh").string() + ": not a regular file")) << fifo.reason();
+  // "/dev/zero" itself has no mesh file type: refused before it is opened.
+  const SceneError bare = refusal("/dev/zero");
+  EXPECT_TRUE(has(bare.reason(), "/dev/zero: unknown mesh file type")) << bare.reason();
+  // A sparse file one byte over the cap (no disk blocks allocated).
+  std::ofstream(dir / "big.stl").close();
+  std::filesystem::resize_file(dir / "big.stl", kMaxMeshFileBytes + 1);
+  const SceneError big = refusal(dir / "big.stl");
+  EXPECT_EQ(big.key_path(), "cracks[0].file");
+  EXPECT_TRUE(has(big.reason(), (dir / "big.stl").string() + ": the file has 1073741825 bytes, more than"))
+      << big.reason();
+  // The same through a 3D scene's cracks: the key path of the crack's file.
+  const std::string scene = error_of(json::array({{{"name", "a"}, {"file", (dir / "zero.stl").string()}}}));
+  EXPECT_TRUE(has(scene, "cracks[0].file: " + (dir / "zero.stl").string() + ": not a regular file")) << scene;
 }
 
 TEST_F(MeshFiles, GmshFormats22And41GiveTheSameSurface) {

@@ -235,4 +235,40 @@ TEST(SceneErrors, TheEstimateCountsFramesPointsAndBytes) {
   EXPECT_EQ(e.output_key, "output.interval");
 }
 
+// The frame estimate follows io/vtu_writer.cpp's layout: output.precision "float32" takes exactly
+// half the field bytes of float64 (the rest of the file unchanged); raw, it is the written frame's
+// size to within the allowance for the XML; with zlib it bounds the written frame from above.
+TEST(SceneErrors, TheFrameEstimateHalvesTheFieldBytesForFloat32AndBoundsTheWrittenFrame) {
+  for (const char* compression : {"none", "zlib"}) {
+    SCOPED_TRACE(compression);
+    const bool zlib = std::string(compression) == "zlib";
+    json s = block();
+    s["output"] = {{"interval", 5e-6}, {"compression", compression}, {"precision", "float64"}};
+    cleave::SceneMethod m64 = cleave::SceneMethod::build(s);
+    s["output"]["precision"] = "float32";
+    cleave::SceneMethod m32 = cleave::SceneMethod::build(s);
+    const cleave::RunEstimate e64 = m64.estimate(), e32 = m32.estimate();
+    EXPECT_EQ(e64.zlib, zlib);
+    EXPECT_FALSE(e64.float32);
+    EXPECT_TRUE(e32.float32);
+    EXPECT_GE(e64.field_bytes, 200 * 3 * 8);  // the coordinates at least
+    EXPECT_EQ(e32.field_bytes * 2, e64.field_bytes);
+    if (!zlib) {
+      EXPECT_EQ(e64.frame_bytes - e32.frame_bytes, e64.field_bytes / 2);
+    }
+    for (auto* m : {&m64, &m32}) {
+      const cleave::RunEstimate e = m->estimate();
+      TempDir dir;
+      cleave::RunOptions opt;
+      opt.out = dir.path / "out";
+      m->run(opt);
+      const double written = double(fs::file_size(opt.out / "particles_000000.vtu"));
+      EXPECT_LE(written, e.frame_bytes);
+      if (!zlib) {
+        EXPECT_GT(written, e.frame_bytes - 16384.0) << "raw: the XML allowance only";
+      }
+    }
+  }
+}
+
 }  // namespace

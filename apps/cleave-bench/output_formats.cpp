@@ -3,8 +3,8 @@
 // scene is stepped to mid-run (the disks in contact, stresses everywhere), then the same frame is
 // written with write_vtu in the four encodings, in a rotated order each repetition (so a drift of
 // the machine's load hits every encoding alike); prints each encoding's file size and its median
-// and fastest write time. The write includes building the file and writing it to --dir (page
-// cache; no fsync), as a run does.
+// and fastest write time. The write includes building the file, writing it to --dir and syncing it
+// to the disk before the rename (io/file_sync.hpp), as a run does.
 // Usage: cleave-bench-output [--steps N] [--reps R] [--threads T] [--dir DIR]
 // (defaults: 600 steps, 30 repetitions, OpenMP's thread count, /tmp/cleave-bench-output).
 #include <omp.h>

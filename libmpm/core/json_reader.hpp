@@ -58,13 +58,26 @@ class ObjectReader {
     if (!has(key)) return fallback;
     const auto& v = j_[key];
     if (!v.is_number_integer()) throw SceneError(at(key), "expected an integer");
-    // Above a long long's range (an unsigned JSON integer) it would wrap to a negative value.
-    const bool huge = v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(INT64_MAX);
-    const long long i = huge ? INT64_MAX : v.get<long long>();
-    if (i < lo || i > hi)
+    const auto i = integer_within(v, lo, hi);
+    if (!i)
       throw SceneError(at(key), "must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
                                     " (got " + v.dump() + ")");
-    return static_cast<int>(i);
+    return static_cast<int>(*i);
+  }
+  // The JSON integer `v` when it lies in [lo, hi], else nothing (also for a non-integer). The one
+  // place scene integers are range-checked: nlohmann keeps a non-negative integer as unsigned, and
+  // one above 2^63 - 1 (18446744073709551615) read as a signed type wraps to a negative value that
+  // could pass a lower bound or be printed as the value given (an error must print v.dump()).
+  static std::optional<long long> integer_within(const nlohmann::json& v, long long lo, long long hi) {
+    if (v.is_number_unsigned()) {
+      const uint64_t u = v.get<uint64_t>();
+      if (hi < 0 || u > static_cast<uint64_t>(hi) || (lo > 0 && u < static_cast<uint64_t>(lo))) return std::nullopt;
+      return static_cast<long long>(u);
+    }
+    if (!v.is_number_integer()) return std::nullopt;
+    const long long i = v.get<long long>();
+    if (i < lo || i > hi) return std::nullopt;
+    return i;
   }
   std::string string(const char* key) const {
     if (!has(key)) throw SceneError(at(key), "missing");

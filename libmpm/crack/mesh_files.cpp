@@ -18,14 +18,30 @@ struct Failure {
   [[noreturn]] void operator()(const std::string& why) const { throw SceneError(key, file.string() + ": " + why); }
 };
 
+// Reads the whole file, refusing before reading anything what is not a regular file (a device such
+// as /dev/zero, a FIFO, a socket: endless or blocking) or is larger than kMaxMeshFileBytes.
 std::string read_all(const std::filesystem::path& file, const Failure& fail) {
+  namespace fs = std::filesystem;
   std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) fail("cannot open: is a directory");
+  const fs::file_status st = fs::status(file, ec);  // follows links: a link to a device is a device
+  if (!fs::exists(st)) fail("cannot open: " + (ec ? ec.message() : std::string("no such file")));
+  if (fs::is_directory(st)) fail("cannot open: is a directory");
+  if (!fs::is_regular_file(st))
+    fail("not a regular file (a device, FIFO or socket); a crack surface is read from an .stl or .msh file");
+  const std::uintmax_t size = fs::file_size(file, ec);
+  if (ec) fail("cannot open: " + ec.message());
+  if (size > kMaxMeshFileBytes)
+    fail("the file has " + std::to_string(size) + " bytes, more than a crack surface file may have (" +
+         std::to_string(kMaxMeshFileBytes) + " bytes, 1 GiB)");
   std::ifstream in(file, std::ios::binary);
   if (!in) fail(std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  // At most the size found above (+1 to see a file that grew since): never more than the cap.
+  std::string d(static_cast<std::size_t>(size) + 1, '\0');
+  in.read(d.data(), static_cast<std::streamsize>(d.size()));
+  if (in.bad()) fail(std::string("cannot read: ") + std::strerror(errno));
+  d.resize(static_cast<std::size_t>(in.gcount()));
+  if (d.size() > size) fail("the file grew while it was read");
+  return d;
 }
 
 // Binary STL: 80-byte header, uint32 count, 50 bytes per facet (normal, three vertices as
@@ -108,6 +124,8 @@ TriMesh gmsh(const std::string& d, const Failure& fail) {
           long entity, n;
           expect(static_cast<bool>(in >> dim >> entity >> parametric >> n), "$Nodes");
           if (parametric) fail("parametric nodes are not read");
+          // Each tag takes at least two bytes of the file: a larger count is not allocated.
+          expect(n >= 0 && static_cast<std::size_t>(n) <= d.size() / 2, "$Nodes");
           std::vector<long> tags(n);
           for (auto& t : tags) expect(static_cast<bool>(in >> t), "$Nodes");
           for (long t : tags) {
@@ -191,16 +209,16 @@ TriMesh gmsh(const std::string& d, const Failure& fail) {
 TriMesh read_mesh_file(const std::filesystem::path& file, const std::string& key) {
   const Failure fail{file, key};
   const std::string ext = file.extension().string();
+  const bool stl = ext == ".stl" || ext == ".STL";
+  if (!stl && ext != ".msh") fail("unknown mesh file type \"" + ext + "\" (read: .stl, .msh)");  // before reading
   const std::string d = read_all(file, fail);
   TriMesh m;
-  if (ext == ".stl" || ext == ".STL") {
+  if (stl) {
     if (is_binary_stl(d)) m = binary_stl(d);
     else if (d.rfind("solid", 0) == 0) m = ascii_stl(d, fail);
     else fail("not an STL file (neither \"solid\" text nor a binary file of 84 + 50 n bytes)");
-  } else if (ext == ".msh") {
-    m = gmsh(d, fail);
   } else {
-    fail("unknown mesh file type \"" + ext + "\" (read: .stl, .msh)");
+    m = gmsh(d, fail);
   }
   if (m.triangles.empty()) fail("no triangles in the file");
   return m;

@@ -47,10 +47,11 @@ TriMesh read_form(const nlohmann::json& j, const std::string& form, const std::s
       if (!T[k].is_array() || T[k].size() != 3) throw SceneError(tp, "expected 3 point indices [i, j, k]");
       std::array<int32_t, 3> t;
       for (int v = 0; v < 3; ++v) {
-        if (!T[k][v].is_number_integer() || T[k][v].get<long long>() < 0 ||
-            T[k][v].get<long long>() >= static_cast<long long>(P.size()))
-          throw SceneError(index_path(tp, v), "expected a point index from 0 to " + std::to_string(P.size() - 1));
-        t[v] = static_cast<int32_t>(T[k][v].get<long long>());
+        const auto i = ObjectReader::integer_within(T[k][v], 0, static_cast<long long>(P.size()) - 1);
+        if (!i)
+          throw SceneError(index_path(tp, v), "expected a point index from 0 to " + std::to_string(P.size() - 1) +
+                                                  " (got " + T[k][v].dump() + ")");
+        t[v] = static_cast<int32_t>(*i);
       }
       m.triangles.push_back(t);
     }

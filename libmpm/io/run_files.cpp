@@ -9,6 +9,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "libmpm/io/file_sync.hpp"
+
 namespace cleave::io {
 namespace fs = std::filesystem;
 
@@ -40,10 +42,12 @@ void write_atomically(const fs::path& file, const std::string& text) {
   if (fd < 0) throw std::runtime_error("cannot write " + tmp.string() + ": " + std::strerror(errno));
   const bool ok = write_all(fd, text);
   const int err = errno;
-  if (::close(fd) != 0 || !ok) {
-    const int e = ok ? errno : err;
+  // On the disk before the rename (io/file_sync.hpp): a power cut leaves the old file or the new.
+  const int sync_err = ok ? sync_descriptor(fd) : 0;
+  if (::close(fd) != 0 || !ok || sync_err) {
+    const int e = !ok ? err : sync_err ? sync_err : errno;
     ::unlink(tmp.c_str());
-    throw std::runtime_error("cannot write " + file.string() + ": " + std::strerror(e));
+    throw std::runtime_error("cannot write " + file.string() + (sync_err ? ": fsync: " : ": ") + std::strerror(e));
   }
   if (::rename(tmp.c_str(), file.c_str()) != 0) {
     const int e = errno;

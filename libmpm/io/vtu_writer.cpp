@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "libmpm/io/appended_blocks.hpp"
+#include "libmpm/io/file_sync.hpp"
 
 namespace cleave::io {
 
@@ -45,6 +46,8 @@ void write_atomically(const std::filesystem::path& file,
     out.close();
     if (out.fail()) fail("close error");
   }
+  // On the disk before the rename (io/file_sync.hpp): a power cut leaves the old file or the new.
+  if (const int e = sync_file(tmp)) fail("fsync: " + std::error_code(e, std::generic_category()).message());
   std::error_code ec;
   std::filesystem::rename(tmp, file, ec);
   if (ec) fail("rename from " + tmp.string() + ": " + ec.message());

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "libmpm/core/error.hpp"
+#include "libmpm/io/file_sync.hpp"
 #include "libmpm/method/state_io.hpp"
 
 namespace cleave {
@@ -45,11 +46,17 @@ void write_checkpoint(const fs::path& file, const Method<Dim>& method, const Loo
     ::unlink(tmp.c_str());
     throw std::runtime_error("cannot write " + file.string() + ": " + std::strerror(err));
   }
+  // On the disk before it replaces the last checkpoint: after a power cut, the old one or the new.
+  if ((err = io::sync_file(tmp)) != 0) {
+    ::unlink(tmp.c_str());
+    throw std::runtime_error("cannot write " + file.string() + ": fsync: " + std::strerror(err));
+  }
   if (::rename(tmp.c_str(), file.c_str()) != 0) {
     err = errno;
     ::unlink(tmp.c_str());
     throw std::runtime_error("cannot write " + file.string() + ": rename: " + std::strerror(err));
   }
+  io::sync_directory(file.parent_path());  // the new name too
 }
 
 template <int Dim>

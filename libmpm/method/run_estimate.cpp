@@ -1,10 +1,12 @@
 #include "libmpm/method/run_estimate.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <streambuf>
 
 #include "libmpm/core/error.hpp"
 #include "libmpm/core/resources.hpp"
+#include "libmpm/io/appended_blocks.hpp"
 #include "libmpm/method/describe.hpp"
 
 namespace cleave {
@@ -27,15 +29,52 @@ class CountingBuf : public std::streambuf {
   }
 };
 
-// Bytes of one frame file: coordinates, point arrays, cells (VTK_VERTEX: connectivity, offset and
-// type per point; polylines: their ids), raw appended data, plus the XML around them.
-double point_set_bytes(const io::PointSet& ps, bool float32) {
+// Bytes of one DataArray's block of `raw` bytes in <AppendedData> (io/appended_blocks.hpp). Raw: a
+// UInt64 count, then the bytes. zlib: 3 + (number of 32 KiB blocks) UInt64 words, then each block
+// deflated, at most zlib's compressBound of it (n + n/4096 + n/16384 + n/2^25 + 13; the fractions
+// here are not rounded down, so the sum bounds the real one).
+double block_bytes(double raw, bool zlib) {
+  if (!zlib) return 8.0 + raw;
+  const double blocks = std::ceil(raw / double(io::kZlibBlockBytes));
+  return 8.0 * (3.0 + blocks) + raw + raw / 4096.0 + raw / 16384.0 + raw / 33554432.0 + 13.0 * blocks;
+}
+
+struct FrameBytes {
+  double total = 0, fields = 0;
+};
+
+// Bytes of one frame file as io/vtu_writer.cpp writes it: the XML (4 KiB and 512 bytes a DataArray:
+// more than it takes), the points and point data (Float64 or Float32), and the cell arrays
+// (connectivity and offsets Int64, types UInt8): a vertex per point, or a line per segment of each
+// polyline (a one-point polyline: a vertex) and a triangle per triangle.
+FrameBytes point_set_bytes(const io::PointSet& ps, bool float32, bool zlib) {
   const double value = float32 ? 4.0 : 8.0;
-  double b = 4096.0 + double(ps.points.size()) * value;
-  for (const auto& a : ps.arrays) b += double(a.values.size()) * value + 512.0;
-  if (ps.polylines.empty()) return b + double(ps.size()) * 17.0;
-  for (const auto& l : ps.polylines) b += double(l.size()) * 8.0 + 9.0;
-  return b;
+  FrameBytes f;
+  f.total = 4096.0;
+  auto array = [&](double raw) { f.total += 512.0 + block_bytes(raw, zlib); };
+  f.fields = double(ps.points.size()) * value;
+  array(double(ps.points.size()) * value);
+  for (const auto& a : ps.arrays) {
+    f.fields += double(a.values.size()) * value;
+    array(double(a.values.size()) * value);
+  }
+  double ids = 0, cells = 0;
+  if (ps.polylines.empty() && ps.triangles.empty()) {
+    ids = cells = double(ps.size());
+  } else {
+    for (const auto& l : ps.polylines) {
+      if (l.empty()) continue;  // no cell
+      const double segments = l.size() == 1 ? 1.0 : double(l.size()) - 1.0;
+      cells += segments;
+      ids += l.size() == 1 ? 1.0 : 2.0 * segments;
+    }
+    cells += double(ps.triangles.size());
+    ids += 3.0 * double(ps.triangles.size());
+  }
+  array(8.0 * ids);    // connectivity
+  array(8.0 * cells);  // offsets
+  array(cells);        // types
+  return f;
 }
 
 // Bytes in `out` of the files a run writes there (a fresh run replaces them; a resumed one keeps
@@ -63,10 +102,14 @@ RunEstimate estimate_run(Method<Dim>& method) {
   e.frames = records_to_end(s, s.output.interval);
   e.memory_bytes = s.memory_bytes;
   const auto series = method.frame_series();
+  e.zlib = s.output.zlib;
+  e.float32 = s.output.float32;
   for (std::size_t k = 0; k < series.size(); ++k) {
     const io::PointSet ps = method.frame(k);
     if (k == 0) e.points = double(ps.size());
-    e.frame_bytes += point_set_bytes(ps, s.output.float32);
+    const FrameBytes f = point_set_bytes(ps, e.float32, e.zlib);
+    e.frame_bytes += f.total;
+    e.field_bytes += f.fields;
   }
   // CSV values print with 17 significant digits: about 22 bytes each; two tips per crack or tracker row.
   const double global = records_to_end(s, s.output.global_interval) * double(method.global_columns().size()) * 22.0;
@@ -91,17 +134,29 @@ std::vector<std::string> describe_estimate(const RunEstimate& e, const fs::path&
   const double avail = available_memory_bytes() + resident_bytes();
   return {format("estimate: %.0f points, %.0f steps, about %s of memory (%s available)", e.points, e.steps,
                  format_bytes(e.memory_bytes).c_str(), format_bytes(avail).c_str()),
-          format("estimate: about %s of output: %.0f frames x %s, tables %s, checkpoint %s (%s free in %s)",
-                 format_bytes(e.output_bytes()).c_str(), e.frames, format_bytes(e.frame_bytes).c_str(),
-                 format_bytes(e.table_bytes).c_str(), format_bytes(e.checkpoint_bytes).c_str(),
-                 format_bytes(free_disk_bytes(out)).c_str(), out.string().c_str())};
+          describe_encoding(e),
+          format("estimate: %s %s of output: %.0f frames x %s, tables %s, checkpoint %s (%s free in %s)",
+                 e.zlib ? "at most" : "about", format_bytes(e.output_bytes()).c_str(), e.frames,
+                 format_bytes(e.frame_bytes).c_str(), format_bytes(e.table_bytes).c_str(),
+                 format_bytes(e.checkpoint_bytes).c_str(), format_bytes(free_disk_bytes(out)).c_str(),
+                 out.string().c_str())};
+}
+
+std::string describe_encoding(const RunEstimate& e) {
+  std::string line = std::string("output encoding: ") + (e.zlib ? "zlib" : "raw") + ", " +
+                     (e.float32 ? "float32" : "float64") + " (output.compression \"" + (e.zlib ? "zlib" : "none") +
+                     "\", output.precision \"" + (e.float32 ? "float32" : "float64") + "\")";
+  if (e.float32) line += "; point coordinates and data " + format_bytes(e.field_bytes) + " a frame, half of float64's";
+  if (e.zlib) line += "; the output figure is an upper bound: zlib's sizes depend on the data";
+  return line;
 }
 
 void check_disk(const RunEstimate& e, const fs::path& out) {
   if (resource_checks_forced()) return;
   const double free = free_disk_bytes(out), earlier = earlier_output_bytes(out);
   if (e.output_bytes() > free + earlier)
-    throw SceneError(e.output_key, "the run would write about " + format_bytes(e.output_bytes()) + " (" +
+    throw SceneError(e.output_key, std::string("the run would write ") + (e.zlib ? "at most " : "about ") +
+                                       format_bytes(e.output_bytes()) + " (" +
                                        format("%.0f", e.frames) + " frames x " + format_bytes(e.frame_bytes) +
                                        "), more than the " + format_bytes(free + earlier) + " free in " +
                                        out.string() + "; write fewer frames, fewer output.fields, or use "
