@@ -128,9 +128,10 @@ enum class TriangleHit : int8_t {
   AtNode,   // the node lies in the closed triangle (on its plane)
 };
 // `side` receives the particle's side of the triangle's plane (+1 above, -1 below) for a hit.
-inline TriangleHit triangle_crossing(const Vec<3>& particle, const Vec<3>& node, const Vec<3>& t0, const Vec<3>& t1,
-                                     const Vec<3>& t2, int& side) {
-  const int s1 = volume_sign(t0, t1, t2, particle);
+// s1 = volume_sign(t0, t1, t2, particle), the particle's side of the triangle's plane, given: a
+// particle's eight (or 27) lines share it, so the MPM classification computes it once per triangle.
+inline TriangleHit triangle_crossing_given(int s1, const Vec<3>& particle, const Vec<3>& node, const Vec<3>& t0,
+                                           const Vec<3>& t1, const Vec<3>& t2, int& side) {
   if (s1 == 0) return TriangleHit::None;
   const int s2 = volume_sign(t0, t1, t2, node);
   if (s2 == s1) return TriangleHit::None;
@@ -146,22 +147,30 @@ inline TriangleHit triangle_crossing(const Vec<3>& particle, const Vec<3>& node,
     if (e[k] == 0 && detail::perturbed_edge_sign(node, *v[k], *v[(k + 1) % 3]) * s1 < 0) return TriangleHit::None;
   return TriangleHit::Crossed;
 }
+inline TriangleHit triangle_crossing(const Vec<3>& particle, const Vec<3>& node, const Vec<3>& t0, const Vec<3>& t1,
+                                     const Vec<3>& t2, int& side) {
+  return triangle_crossing_given(volume_sign(t0, t1, t2, particle), particle, node, t0, t1, t2, side);
+}
 
 // Crossing of the particle-node line with the triangles triangles[ids[0]], ..., triangles[ids[n-1]]
 // of a surface, WITHOUT extent screening, by the rules at the top of this file. Exact for the whole
 // surface when the triangles left out cannot meet the closed segment (the MPM crack fields pass
 // those whose bounding boxes meet the particle-node box). `triangle` (optional) receives one
 // crossed triangle on the returned side (the crack normal of contact is taken from it).
-template <class Ids>
-Side triangle_list_crossing(const Vec<3>* points, const std::array<int32_t, 3>* triangles, const Ids& ids,
-                            std::size_t n, const Vec<3>& particle, const Vec<3>& node, std::size_t* triangle = nullptr) {
+// particle_side(k): volume_sign of triangle ids[k] and the particle (triangle_list_crossing computes
+// it; a caller with many lines from one particle may keep it).
+template <class Ids, class ParticleSide>
+Side triangle_list_crossing_with(const Vec<3>* points, const std::array<int32_t, 3>* triangles, const Ids& ids,
+                                 std::size_t n, const Vec<3>& particle, const Vec<3>& node,
+                                 ParticleSide&& particle_side, std::size_t* triangle = nullptr) {
   int count = 0, net = 0, node_side = 0;
   std::size_t tri_above = 0, tri_below = 0, tri_node = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t t = static_cast<std::size_t>(ids[k]);
     const auto& T = triangles[t];
     int side = 0;
-    const TriangleHit hit = triangle_crossing(particle, node, points[T[0]], points[T[1]], points[T[2]], side);
+    const TriangleHit hit =
+        triangle_crossing_given(particle_side(k), particle, node, points[T[0]], points[T[1]], points[T[2]], side);
     if (hit == TriangleHit::None) continue;
     if (hit == TriangleHit::AtNode) {  // one crossing at the node, however many triangles hold it
       if (node_side == 0) node_side = side, tri_node = t;
@@ -177,6 +186,15 @@ Side triangle_list_crossing(const Vec<3>* points, const std::array<int32_t, 3>* 
   if (count % 2 == 0) return Side::None;
   if (triangle) *triangle = net > 0 ? tri_above : tri_below;
   return net > 0 ? Side::Above : Side::Below;
+}
+template <class Ids>
+Side triangle_list_crossing(const Vec<3>* points, const std::array<int32_t, 3>* triangles, const Ids& ids,
+                            std::size_t n, const Vec<3>& particle, const Vec<3>& node, std::size_t* triangle = nullptr) {
+  auto particle_side = [&](std::size_t k) {
+    const auto& T = triangles[static_cast<std::size_t>(ids[k])];
+    return volume_sign(points[T[0]], points[T[1]], points[T[2]], particle);
+  };
+  return triangle_list_crossing_with(points, triangles, ids, n, particle, node, particle_side, triangle);
 }
 
 // Whole-surface crossing (points, triangles: point indices, consistently oriented) WITHOUT extent

@@ -228,19 +228,118 @@ class Classification : public SpatialIndex<Dim, SF> {
     }
   }
 
-  // 3D: per near particle, each index entry of its cell narrowed to the triangles whose bounding
-  // boxes meet the closed box B of the particle and its stencil nodes (exact, as in 2D: a triangle
-  // apart from B cannot meet a particle-node line, and the crossing rules are per triangle), then
-  // every pair classified on that short list.
+  // 3D: the keys of the lines from xp (in `cell`, >= 0) to the nodes of a K x K x K block, node (a, b, c)
+  // at (nc[0][a], nc[1][b], nc[2][c]), for each pair j = (a K + b) K + c that want(j) asks for:
+  // emit(j, key) with the crossed segments written to seg_of(j) (as classify's); false, and nothing
+  // emitted, when no triangle is near (every key 0). Each index entry of the cell is first narrowed to the triangles
+  // whose bounding boxes meet the closed box B of xp and the nodes (exact, as in 2D: a triangle apart
+  // from B cannot meet a line, and the crossing rules are per triangle); each line is then tested on
+  // the triangles of that short list whose boxes meet its own box. A line's box spans xp and one node,
+  // so it is found axis by axis: bit a of mask[d][i] says whether triangle i's box meets, along axis d,
+  // the span of xp and the block's a-th node coordinate (the triangle meets line (a, b, c) when its
+  // three bits are set). xp's side of each triangle's plane is computed once for all its lines.
+  // Same keys and segments as classify() line by line.
+  template <int K, class Want, class Seg, class Emit>
+  bool classify_block3(int64_t cell, const V& xp, const double (&nc)[3][K], Want&& want, Seg&& seg_of,
+                       Emit&& emit) const {
+    static_assert(K <= 8);
+    constexpr int kMaxTri = 512;  // triangles kept; more: the full entries, line by line
+    V lo = xp, hi = xp;
+    for (int d = 0; d < 3; ++d)
+      for (int a = 0; a < K; ++a) lo[d] = std::min(lo[d], nc[d][a]), hi[d] = std::max(hi[d], nc[d][a]);
+    int32_t ids[kMaxTri];
+    SubRange sub[kMaxSub];  // per entry: its triangles in ids[lo .. hi]
+    int nsub = 0, nid = 0;
+    for (int32_t e = cell_head_[cell]; e >= 0; e = entries_[e].next) {
+      const Entry& en = entries_[e];
+      if (nsub == kMaxSub) {
+        nsub = -1;
+        break;
+      }
+      const int32_t first = nid;
+      if ((en.hi.array() >= lo.array()).all() && (en.lo.array() <= hi.array()).all()) {
+        for (int32_t a = en.seg_lo; a <= en.seg_hi && nsub >= 0; ++a) {
+          const V& tlo = tri_lo_[en.crack][tri_ids_[a]];
+          const V& thi = tri_hi_[en.crack][tri_ids_[a]];
+          if (!((thi.array() >= lo.array()).all() && (tlo.array() <= hi.array()).all())) continue;
+          if (nid == kMaxTri) {
+            nsub = -1;
+            break;
+          }
+          ids[nid++] = tri_ids_[a];
+        }
+        if (nsub < 0) break;
+      }
+      sub[nsub++] = {en.crack, first, nid - 1};
+    }
+    constexpr int kLines = K * K * K;
+    if (nsub >= 0 && nid == 0) return false;
+    if (nsub < 0) {  // too many triangles near: every line on the cell's whole entries
+      for (int j = 0; j < kLines; ++j)
+        if (want(j)) {
+          const V xn(nc[0][j / (K * K)], nc[1][(j / K) % K], nc[2][j % K]);
+          emit(j, classify_in_cell(cell, xp, xn, seg_of(j)));
+        }
+      return true;
+    }
+    uint8_t mask[3][kMaxTri];
+    int8_t side_of[kMaxTri];  // xp's side of triangle ids[i]'s plane; 2: not yet computed
+    for (int e = 0; e < nsub; ++e)
+      for (int i = sub[e].lo; i <= sub[e].hi; ++i) {
+        const V& tlo = tri_lo_[sub[e].crack][ids[i]];
+        const V& thi = tri_hi_[sub[e].crack][ids[i]];
+        for (int d = 0; d < 3; ++d) {
+          unsigned m = 0;
+          for (int a = 0; a < K; ++a)
+            m |= static_cast<unsigned>(thi[d] >= std::min(xp[d], nc[d][a]) && tlo[d] <= std::max(xp[d], nc[d][a])) << a;
+          mask[d][i] = static_cast<uint8_t>(m);
+        }
+        side_of[i] = 2;
+      }
+    struct At {  // the triangle ids of the positions hit[]
+      const int32_t* ids;
+      const int32_t* hit;
+      int32_t operator[](std::size_t i) const { return ids[hit[i]]; }
+    };
+    for (int j = 0; j < kLines; ++j) {
+      if (!want(j)) continue;
+      const int ax = j / (K * K), ay = (j / K) % K, az = j % K;
+      const V xn(nc[0][ax], nc[1][ay], nc[2][az]);
+      crack::FieldKeyBuilder b;
+      bool overflow = false;
+      for (int e = 0; e < nsub && !overflow; ++e) {
+        int32_t hit[kMaxTri];  // positions in ids of the triangles meeting the line's box, in order
+        int m = 0;
+        for (int i = sub[e].lo; i <= sub[e].hi; ++i)
+          if ((mask[0][i] >> ax) & (mask[1][i] >> ay) & (mask[2][i] >> az) & 1u) hit[m++] = i;
+        if (m == 0) continue;
+        const crack::ExplicitCrack<Dim>& c = cracks_[sub[e].crack];
+        auto particle_side = [&](std::size_t i) {
+          int8_t& sd = side_of[hit[i]];
+          if (sd == 2) {
+            const auto& T = c.simplices[static_cast<std::size_t>(ids[hit[i]])];
+            sd = static_cast<int8_t>(crack::volume_sign(c.points[T[0]], c.points[T[1]], c.points[T[2]], xp));
+          }
+          return static_cast<int>(sd);
+        };
+        std::size_t t = 0;
+        const crack::Side side = crack::triangle_list_crossing_with(
+            c.points.data(), c.simplices.data(), At{ids, hit}, static_cast<std::size_t>(m), xp, xn, particle_side, &t);
+        overflow = side != crack::Side::None && !b.add(sub[e].crack, side, static_cast<int32_t>(t));
+      }
+      emit(j, overflow ? kOverflow : b.key(seg_of(j)));
+    }
+    return true;
+  }
+
+  // 3D: every pair of every near particle by classify_block3 on its stencil's nodes.
   void classify_pairs3(const std::size_t nn) {
-    constexpr int kMaxTri = 512;  // triangles per particle kept; more: the full entries
 #pragma omp parallel for schedule(static) if (nn >= 512)
     for (std::size_t k = 0; k < nn; ++k) {
       const std::size_t p = static_cast<std::size_t>(near_[k]);
       const V xp = P_.x[p];
       St& s = near_st_[k];
       s.eval(G_, stride_, inv_h_, xp, P_.half_width[p]);
-      const int64_t cell = cell_of(xp);
       int64_t i0[3];
       int64_t r = s.base;
       for (int d = 0; d < 3; ++d) i0[d] = r / static_cast<int64_t>(stride_[d]), r %= static_cast<int64_t>(stride_[d]);
@@ -249,59 +348,13 @@ class Classification : public SpatialIndex<Dim, SF> {
         const V xa = node_position(i0[0] + a, i0[1] + a, i0[2] + a);
         for (int d = 0; d < 3; ++d) nc[d][a] = xa[d];
       }
-      V lo = xp, hi = xp;
-      for (int d = 0; d < 3; ++d)
-        for (int a = 0; a < St::K; ++a) lo[d] = std::min(lo[d], nc[d][a]), hi[d] = std::max(hi[d], nc[d][a]);
-      int32_t ids[kMaxTri];
-      SubRange sub[kMaxSub];  // per entry: its triangles in ids[lo .. hi]
-      int nsub = 0, nid = 0;
-      for (int32_t e = cell_head_[cell]; e >= 0; e = entries_[e].next) {
-        const Entry& en = entries_[e];
-        if (nsub == kMaxSub) {
-          nsub = -1;
-          break;
-        }
-        const int32_t first = nid;
-        if ((en.hi.array() >= lo.array()).all() && (en.lo.array() <= hi.array()).all()) {
-          for (int32_t a = en.seg_lo; a <= en.seg_hi && nsub >= 0; ++a) {
-            const V& tlo = tri_lo_[en.crack][tri_ids_[a]];
-            const V& thi = tri_hi_[en.crack][tri_ids_[a]];
-            if (!((thi.array() >= lo.array()).all() && (tlo.array() <= hi.array()).all())) continue;
-            if (nid == kMaxTri) {
-              nsub = -1;
-              break;
-            }
-            ids[nid++] = tri_ids_[a];
-          }
-          if (nsub < 0) break;
-        }
-        sub[nsub++] = {en.crack, first, nid - 1};
-      }
-      const bool any = nsub < 0 || nid > 0;
-      key_any_[k] = any;
-      if (!any) {
-        std::fill_n(&pair_key_[k * N], N, 0u);
-        continue;
-      }
+      bool weighted[N];
       int j = 0;
-      s.for_each_weight([&](int64_t, double w) {
-        const std::size_t q = k * N + j;
-        const V xn(nc[0][j / (St::K * St::K)], nc[1][(j / St::K) % St::K], nc[2][j % St::K]);
-        ++j;
-        pair_key_[q] = 0;
-        if (w == 0.0) return;
-        if (nsub < 0) {
-          pair_key_[q] = classify_in_cell(cell, xp, xn, &pair_seg_[2 * q]);
-          return;
-        }
-        crack::FieldKeyBuilder b;
-        for (int e = 0; e < nsub; ++e)
-          if (!add_crossing3(b, sub[e].crack, ids + sub[e].lo, sub[e].hi - sub[e].lo + 1, xp, xn)) {
-            pair_key_[q] = kOverflow;
-            return;
-          }
-        pair_key_[q] = b.key(&pair_seg_[2 * q]);
-      });
+      s.for_each_weight([&](int64_t, double w) { weighted[j++] = w != 0.0; });
+      std::fill_n(&pair_key_[k * N], N, 0u);
+      key_any_[k] = classify_block3<St::K>(
+          cell_of(xp), xp, nc, [&](int q) { return weighted[q]; }, [&](int q) { return &pair_seg_[2 * (k * N + q)]; },
+          [&](int q, uint32_t key) { pair_key_[k * N + q] = key; });
     }
   }
 

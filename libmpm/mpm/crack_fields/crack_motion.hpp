@@ -79,7 +79,7 @@ class CrackMotion : public FieldSlots<Dim, SF> {
  protected:
   using Base::block_nslots_, Base::classify, Base::cracks_, Base::extra_field, Base::G_, Base::grid_;
   using Base::kExtra, Base::kOverflow, Base::linear_nodes, Base::mass_, Base::momentum_, Base::node_block_;
-  using Base::node_position, Base::parallel_points, Base::pos0_, Base::pos_;
+  using Base::cell_of, Base::node_position, Base::parallel_points, Base::pos0_, Base::pos_;
   using Base::block_key_, Base::block_node_, Base::kin_, Base::xkin_;
   static constexpr double kProbe = 1e-3;  // cells: how far above/below a surface its probe sits
 
@@ -268,15 +268,37 @@ class CrackMotion : public FieldSlots<Dim, SF> {
       for (int side = 0; side < 2; ++side) {
         const V probe = side == 0 ? V(c.points[i] + kProbe * G_.h * nl) : V(c.points[i] - kProbe * G_.h * nl);
         SideFields& sf = out[2 * i + side];
-        linear_nodes(side == 0 ? c.above[i] : c.below[i], [&](int64_t n, double w) {
-          int32_t seg[2];
-          const uint32_t key = classify(probe, node_position(n), seg);
-          if (key == kOverflow) return;
-          const int32_t xs = key == 0 ? -1 : extra_field(n, key);
-          if (key != 0 && xs < 0) return;  // the node has no field for that side
-          sf.node[sf.count] = n, sf.w[sf.count] = w, sf.field[sf.count] = xs;
+        constexpr int kN = 1 << Dim;
+        int64_t node[kN];
+        double weight[kN];
+        int nn = 0;
+        linear_nodes(side == 0 ? c.above[i] : c.below[i], [&](int64_t n, double w) { node[nn] = n, weight[nn++] = w; });
+        uint32_t key[kN] = {};
+        if constexpr (Dim == 3) {  // the eight lines at once (classify_block3: same keys)
+          const int64_t cell = nn == kN ? cell_of(probe) : -1;
+          if (cell >= 0) {
+            double nc[3][2];
+            for (int a = 0; a < 2; ++a)
+              nc[0][a] = node_position(node[4 * a]).x(), nc[1][a] = node_position(node[2 * a]).y(),
+              nc[2][a] = node_position(node[a]).z();
+            int32_t seg[2];
+            this->template classify_block3<2>(
+                cell, probe, nc, [](int) { return true; }, [&](int) { return seg; },
+                [&](int j, uint32_t k) { key[j] = k; });
+          }
+        } else {
+          for (int e = 0; e < nn; ++e) {
+            int32_t seg[2];
+            key[e] = classify(probe, node_position(node[e]), seg);
+          }
+        }
+        for (int e = 0; e < nn; ++e) {
+          if (key[e] == kOverflow) continue;
+          const int32_t xs = key[e] == 0 ? -1 : extra_field(node[e], key[e]);
+          if (key[e] != 0 && xs < 0) continue;  // the node has no field for that side
+          sf.node[sf.count] = node[e], sf.w[sf.count] = weight[e], sf.field[sf.count] = xs;
           ++sf.count;
-        });
+        }
       }
     }
     side_valid_[ci] = 1;
