@@ -41,7 +41,7 @@ constexpr double kBusy = 0.1;            // cores used by other processes: a con
 const char* kHelp = R"(cleave-bench - cost of one MPM step, in nanoseconds per particle-step
 
 Usage:
-  cleave-bench [--case 2d|3d|all] [--shape linear|ugimp|all] [--scheme USL|MUSL|USF|USAVG]
+  cleave-bench [--case 2d|3d|all] [--shape linear|ugimp|all] [--scheme USL|MUSL|USF|USAVG|all]
                [--threads-list 1,2,...] [--steps N] [--particles N] [--reps N]
                [--warmup N] [--quick]
   cleave-bench --help
@@ -83,7 +83,7 @@ What is measured:
 Options:
   --case C          2d, 3d or all (default all)
   --shape S         linear, ugimp or all (default all)
-  --scheme S        USL, MUSL, USF or USAVG (default USAVG)
+  --scheme S        USL, MUSL, USF, USAVG or all (every scheme, one row each) (default USAVG)
   --threads-list L  comma-separated OpenMP thread counts (default 1,2); speed-up and
                     efficiency need 1 in the list
   --steps N         timed steps per repetition (default: per case, calibrated at start on
@@ -107,7 +107,8 @@ Exit status: 0 success (whatever the targets), 1 a step failed or an internal er
 struct Options {
   std::vector<int> dims = {2, 3};
   std::vector<std::string> shapes = {"linear", "ugimp"};
-  std::string scheme = "USAVG";
+  std::string scheme = "USAVG";            // or "all"
+  std::vector<std::string> schemes = {"USAVG"};
   std::vector<int> threads = {1, 2};
   long steps = 0;  // 0: calibrate
   long particles = 250000;
@@ -153,8 +154,12 @@ Options parse_args(int argc, char** argv, bool& help) {
       else throw BadArgs("--shape: expected linear, ugimp or all, got '" + v + "'");
     } else if (a == "--scheme") {
       o.scheme = value();
-      if (!scheme_from_name(o.scheme))
-        throw BadArgs("--scheme: expected USL, MUSL, USF or USAVG, got '" + o.scheme + "'");
+      if (o.scheme == "all")
+        o.schemes = {"USL", "MUSL", "USF", "USAVG"};
+      else if (scheme_from_name(o.scheme))
+        o.schemes = {o.scheme};
+      else
+        throw BadArgs("--scheme: expected USL, MUSL, USF, USAVG or all, got '" + o.scheme + "'");
     } else if (a == "--threads-list") {
       const std::string v = value();
       o.threads.clear();
@@ -196,6 +201,7 @@ struct CaseSpec {
   int dim = 2;
   std::string shape;  // linear | ugimp
   std::string name;   // e.g. 2d-ugimp
+  std::string scheme;  // USL | MUSL | USF | USAVG
   json scene;
   std::string body;   // human-readable body size
   double h = 0.0;
@@ -212,6 +218,7 @@ CaseSpec make_case(int dim, const std::string& shape, const std::string& scheme,
   c.dim = dim;
   c.shape = shape;
   c.name = std::to_string(dim) + "d-" + shape;
+  c.scheme = scheme;
   json box_min, box_max, velocity, fixed, region_min, region_max;
   if (dim == 2) {
     // 4 particles per cell; ny cells across, nx along: 4 nx ny >= target, nx ~ 4 ny.
@@ -345,7 +352,7 @@ CaseInfo probe(const CaseSpec& c, bool calibrate) {
 }
 
 struct Row {
-  std::string name;
+  std::string name, scheme;
   int dim = 2;
   std::string shape;
   std::size_t particles = 0;
@@ -366,11 +373,12 @@ int bench(const Options& o) {
   omp_set_dynamic(0);
   const bool calibrate = o.steps == 0;
   std::vector<CaseSpec> cases;
-  for (int dim : o.dims)
-    for (const auto& shape : o.shapes) cases.push_back(make_case(dim, shape, o.scheme, o.particles));
+  for (const auto& scheme : o.schemes)
+    for (int dim : o.dims)
+      for (const auto& shape : o.shapes) cases.push_back(make_case(dim, shape, scheme, o.particles));
 
   std::printf("cleave-bench: wall time of Stepper::step() (full %s step, seed 002 Appendix A; no output)\n",
-              o.scheme.c_str());
+              o.scheme == "all" ? "USL, MUSL, USF and USAVG" : o.scheme.c_str());
   std::printf("%d repetition%s per measurement (best reported; up to %d if contended), %d untimed warm-up "
               "step%s, fresh model per repetition%s\n",
               o.reps, o.reps == 1 ? "" : "s", 2 * o.reps, o.warmup, o.warmup == 1 ? "" : "s",
@@ -414,7 +422,7 @@ int bench(const Options& o) {
   std::vector<std::string> notes;
   for (std::size_t ci = 0; ci < cases.size(); ++ci) {
     const CaseSpec& c = cases[ci];
-    const std::string label = c.name + " " + o.scheme;
+    const std::string label = c.name + " " + c.scheme;
     double ns_one = -1.0;
     bool have_ref = false, mismatch = false, zero_stress = false;
     Timing ref;
@@ -437,7 +445,7 @@ int bench(const Options& o) {
         }
         if (!(tm.strain > 0.0)) zero_stress = true;
       }
-      Row row{c.name, c.dim, c.shape, infos[ci].particles, t, steps[ci], 0.0, -1.0};
+      Row row{label, c.scheme, c.dim, c.shape, infos[ci].particles, t, steps[ci], 0.0, -1.0};
       row.ns = best / (double(steps[ci]) * double(infos[ci].particles)) * 1e9;
       if (t == 1) ns_one = row.ns;
       if (ns_one > 0.0 && t > 1) row.speed_up = ns_one / row.ns;
@@ -478,12 +486,11 @@ int bench(const Options& o) {
   // Targets, from the 2D uGIMP rows of this run (USAVG only).
   const Row* one = nullptr;
   const Row* two = nullptr;
-  if (o.scheme == "USAVG")
-    for (const auto& r : rows)
-      if (r.dim == 2 && r.shape == "ugimp") {
-        if (r.threads == 1) one = &r;
-        if (r.threads == 2) two = &r;
-      }
+  for (const auto& r : rows)
+    if (r.scheme == "USAVG" && r.dim == 2 && r.shape == "ugimp") {
+      if (r.threads == 1) one = &r;
+      if (r.threads == 2) two = &r;
+    }
   const std::string t1 =
       one ? fmt("%.1f ns", one->ns) + (one->ns <= kTargetNs ? " -> MET" : " -> NOT MET")
           : std::string("NOT MEASURED (needs --case 2d|all, --shape ugimp|all, --scheme USAVG, thread 1)");

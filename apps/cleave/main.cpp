@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "apps/cleave/render_cli.hpp"
 #include "libmpm/core/error.hpp"
 #include "libmpm/core/resources.hpp"
+#include "libmpm/core/thread_governor.hpp"
 #include "libmpm/method/run_scene.hpp"
 #include "libmpm/scene/scene.hpp"
 
@@ -51,7 +53,8 @@ Commands:
 
 Options:
   --out DIR      output directory (default: SCENE's file name without .json, + "_out")
-  --threads N    OpenMP threads (default: OMP_NUM_THREADS or all cores); results are the
+  --threads N    exactly N OpenMP threads; default: up to OMP_NUM_THREADS or all cores, fewer
+                 while other processes keep cores busy (measured every second); results are the
                  same for any N
   --resume       continue a stopped run from DIR/checkpoint.bin (same scene)
   --quiet        no progress line
@@ -116,6 +119,16 @@ int run_scene_command(const nlohmann::json& scene, const Args& a) {
   opt.log = [&](const std::string& w) {  // the first few in full, then a count at the end
     if (++warnings <= 5) std::fprintf(stderr, "\ncleave: warning: %s\n", w.c_str());
   };
+  // Without --threads: fewer threads while other processes hold cores (core/thread_governor.hpp).
+  std::optional<ThreadGovernor> governor;
+  if (a.threads == 0 && omp_get_max_threads() > 1) {
+    governor.emplace(omp_get_max_threads());
+    opt.between_steps = [&] {
+      if (const int n = governor->poll(); n > 0 && !a.quiet)
+        std::fprintf(stderr, "\ncleave: other processes keep %.1f of %d cores busy: %d thread%s from now on\n",
+                     governor->other_cores(), omp_get_num_procs(), n, n == 1 ? "" : "s");
+    };
+  }
   try {
     const RunSummary s = method.run(opt);
     printer.finish();

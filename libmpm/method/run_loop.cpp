@@ -224,6 +224,7 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
     while (method.time() < set.end_time - eps) {
       if (const int sig = stop_requested()) stop_run(sig);
       const StepProblem problem = method.step();
+      if (opt.between_steps) opt.between_steps();
       const double t = method.time();
       const bool last = t >= set.end_time - eps;
       if (opt.log)

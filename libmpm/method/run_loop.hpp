@@ -30,6 +30,7 @@ struct RunOptions {
   bool resume = false;
   std::function<void(const RunProgress&)> progress;  // called about every progress_interval_s
   std::function<void(const std::string&)> log;       // warnings found while stepping
+  std::function<void()> between_steps;               // after every step (the CLI's ThreadGovernor)
   double progress_interval_s = 0.5;
   double status_interval_s = 1.0;  // run.json while running: at every frame, else at most this often
   uint64_t scene_hash = 0;
