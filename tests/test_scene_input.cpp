@@ -150,6 +150,17 @@ TEST(SceneErrors, ADirectoryOrAMissingFileAsTheSceneCannotBeOpened) {
   EXPECT_TRUE(has(m.reason(), "no such file")) << m.reason();
 }
 
+TEST(SceneErrors, AnEndlessOrHugeSceneFileIsRefusedAfterItsCapNotReadUntilMemoryRunsOut) {
+  const SceneError z = error_of([] { cleave::load_scene_file("/dev/zero"); });
+  EXPECT_EQ(z.key_path(), "");
+  EXPECT_TRUE(has(z.reason(), "cannot read /dev/zero: more than 64 MiB")) << z.reason();
+  TempDir dir;  // a sparse file one byte over the cap (no disk used)
+  const fs::path big = dir.path / "big.json";
+  std::ofstream(big) << "{}";
+  fs::resize_file(big, cleave::kMaxSceneFileBytes + 1);
+  EXPECT_TRUE(has(error_of([&] { cleave::load_scene_file(big); }).reason(), "more than 64 MiB"));
+}
+
 TEST(SceneErrors, AnUnreadableSceneCannotBeOpened) {
   TempDir dir;
   const fs::path locked = dir.path / "locked.json";

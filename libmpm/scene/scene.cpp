@@ -23,10 +23,18 @@ json load_scene_file(const std::filesystem::path& file) {
   if (std::filesystem::is_directory(st)) throw SceneError("", "cannot open " + name + ": is a directory");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneError("", "cannot open " + name + ": " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
+  // Read in blocks up to a cap, so that /dev/zero or an endless pipe is refused instead of read
+  // until memory runs out (a scene is text of kilobytes; meshes and photographs are files of their own).
+  std::string text;
+  char block[1 << 16];
+  while (in.read(block, sizeof block) || in.gcount() > 0) {
+    text.append(block, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxSceneFileBytes)
+      throw SceneError("", "cannot read " + name + ": more than " + std::to_string(kMaxSceneFileBytes >> 20) +
+                               " MiB, not a scene file (a scene is JSON text of kilobytes)");
+  }
   if (in.bad()) throw SceneError("", "cannot read " + name + ": " + std::strerror(errno));
-  return scene::parse_scene_text(text.str());
+  return scene::parse_scene_text(text);
 }
 
 int scene_dimension(const json& scene) {

@@ -2,6 +2,7 @@
 // method), and `--set` overrides. The sections shared by every method are in scene/sections.hpp;
 // each method reads its own section in its folder (mpm/mpm_scene.cpp, pd/pd_scene.cpp).
 #pragma once
+#include <cstddef>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -11,7 +12,9 @@ namespace cleave {
 
 // Reads and parses the file strictly (scene/json_text.hpp: duplicate keys, numbers out of range,
 // syntax errors name the key, line and column). A file that cannot be opened (missing, a directory,
-// unreadable) is a SceneError with an empty key path whose reason names the file.
+// unreadable, longer than kMaxSceneFileBytes: /dev/zero, an endless pipe) is a SceneError with an
+// empty key path whose reason names the file.
+inline constexpr std::size_t kMaxSceneFileBytes = std::size_t(64) << 20;
 nlohmann::json load_scene_file(const std::filesystem::path& file);
 
 // 2 or 3, from "analysis.type".
