@@ -341,5 +341,12 @@ TEST_F(RenderCrack3DCli, BadSliceAndOpeningScaleOptionsExitWithStatus2NamingTheO
   EXPECT_NE(r.err.find("--slice needs a 3D series"), std::string::npos) << r.err;
 }
 
+TEST_F(RenderCrack3DCli, PlotCodOfA3DRunSaysItIsFor2DCracksAndNamesWhatDrawsA3DOpening) {
+  const auto r = test::run_headless("plot " + (dir_ / "out").string() + " --cod 0", dir_);
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("--cod plots the opening along 2D cracks"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--opening-scale"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace cleave::viz

@@ -321,11 +321,14 @@ fs::path render_cod_profile(const fs::path& dir, const fs::path& images, double 
   if (!cf.grid) throw std::runtime_error((dir / "cracks.pvd").string() + ": no crack series (the scene declares no crack)");
   vtkUnstructuredGrid* g = cf.grid;
   const fs::path& file = cf.file;
+  const auto paths = crack_paths(g);
+  if (paths.empty())  // 3D crack frames hold surfaces: their opening is drawn by cleave render
+    throw std::runtime_error(file.string() + ": no crack paths: --cod plots the opening along 2D cracks; for a 3D "
+                             "crack use cleave render with --opening-scale or a --cut-plane section");
   vtkDataArray* cn = g->GetPointData()->GetArray("cod_normal");
   vtkDataArray* ct = g->GetPointData()->GetArray("cod_tangential");
   if (!cn || !ct) throw std::runtime_error(file.string() + ": no cod_normal / cod_tangential point data");
   std::vector<PlotSeries> series;
-  const auto paths = crack_paths(g);
   for (std::size_t c = 0; c < paths.size(); ++c) {
     PlotSeries n{"normal COD, crack " + std::to_string(c), {}, {}}, t{"tangential COD, crack " + std::to_string(c), {}, {}};
     double along = 0, prev[3] = {0, 0, 0};
