@@ -187,6 +187,7 @@ Side triangle_list_crossing_with(const Vec<3>* points, const std::array<int32_t,
   if (triangle) *triangle = net > 0 ? tri_above : tri_below;
   return net > 0 ? Side::Above : Side::Below;
 }
+// The same, each triangle's particle side computed here.
 template <class Ids>
 Side triangle_list_crossing(const Vec<3>* points, const std::array<int32_t, 3>* triangles, const Ids& ids,
                             std::size_t n, const Vec<3>& particle, const Vec<3>& node, std::size_t* triangle = nullptr) {

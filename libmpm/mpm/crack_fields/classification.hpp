@@ -231,14 +231,14 @@ class Classification : public SpatialIndex<Dim, SF> {
   // 3D: the keys of the lines from xp (in `cell`, >= 0) to the nodes of a K x K x K block, node (a, b, c)
   // at (nc[0][a], nc[1][b], nc[2][c]), for each pair j = (a K + b) K + c that want(j) asks for:
   // emit(j, key) with the crossed segments written to seg_of(j) (as classify's); false, and nothing
-  // emitted, when no triangle is near (every key 0). Each index entry of the cell is first narrowed to the triangles
-  // whose bounding boxes meet the closed box B of xp and the nodes (exact, as in 2D: a triangle apart
-  // from B cannot meet a line, and the crossing rules are per triangle); each line is then tested on
-  // the triangles of that short list whose boxes meet its own box. A line's box spans xp and one node,
-  // so it is found axis by axis: bit a of mask[d][i] says whether triangle i's box meets, along axis d,
-  // the span of xp and the block's a-th node coordinate (the triangle meets line (a, b, c) when its
-  // three bits are set). xp's side of each triangle's plane is computed once for all its lines.
-  // Same keys and segments as classify() line by line.
+  // emitted, when no triangle is near (every key 0). Each index entry of the cell is first narrowed
+  // to the triangles whose bounding boxes meet the closed box B of xp and the nodes (exact, as in 2D:
+  // a triangle apart from B cannot meet a line, and the crossing rules are per triangle); each line
+  // is then tested on the triangles of that short list whose boxes meet its own box. A line's box
+  // spans xp and one node, so it is found axis by axis: bit a of mask[d][i] says whether triangle
+  // i's box meets, along axis d, the span of xp and the block's a-th node coordinate (the triangle
+  // meets line (a, b, c) when its three bits are set). xp's side of each triangle's plane is
+  // computed once for all its lines. Same keys and segments as classify() line by line.
   template <int K, class Want, class Seg, class Emit>
   bool classify_block3(int64_t cell, const V& xp, const double (&nc)[3][K], Want&& want, Seg&& seg_of,
                        Emit&& emit) const {
