@@ -102,4 +102,29 @@ SceneError error_of(F&& f) {
   return SceneError("(none)", "");
 }
 
+// The DCB of data/scenes/dcb_crack.json in plane strain, in 2D (dim 2) or as a 3D slab one cell thick
+// between two symmetry planes, its crack a rectangle through the slab (clipped to it), run to `end`
+// without output (issue 16's 2D-3D agreement, issue 17's J of a through crack).
+inline json dcb_slab_scene(int dim, double end) {
+  json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");
+  s["analysis"] = dim == 2 ? json{{"type", "plane_strain"}, {"thickness", 2}} : json{{"type", "3d"}};
+  s["time"]["end"] = end;
+  s.erase("output");
+  if (dim == 3) {
+    s["grid"] = {{"min", {-5, -22, -4}}, {"max", {105, 22, 6}}};
+    s["bodies"][0]["shape"] = {{"type", "box"}, {"min", {0, -18, 0}}, {"max", {100, 18, 2}}};
+    for (auto& l : s["loads"]) {
+      l["region"]["min"].push_back(-1);
+      l["region"]["max"].push_back(3);
+      l["traction"].push_back(0);
+    }
+    s["loads"].push_back({{"type", "symmetry"}, {"axis", "z"}, {"position", 0}});
+    s["loads"].push_back({{"type", "symmetry"}, {"axis", "z"}, {"position", 2}});
+    s["cracks"][0] = {{"name", "midplane"},
+                      {"rectangle", {{"corner", {-2, 0, -1}}, {"edges", {{0, 0, 4}, {52, 0, 0}}}}},
+                      {"contact", s["cracks"][0]["contact"]}};
+  }
+  return s;
+}
+
 }  // namespace cleave::test

@@ -80,32 +80,10 @@ TEST(Crack3dPatch, TopHalfOfACrackedBlockEqualsTheHalfModelWithASymmetryPlane) {
 // cell thick between two symmetry planes, its crack a rectangle through the slab (clipped to it):
 // the load-point openings agree within 0.5 % (issue 16). Contact as the scene has it (frictionless,
 // displacement detection: the faces separate, so it never acts).
-json dcb(int dim, double end) {
-  json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");
-  s["analysis"] = dim == 2 ? json{{"type", "plane_strain"}, {"thickness", 2}} : json{{"type", "3d"}};
-  s["time"]["end"] = end;
-  s.erase("output");
-  if (dim == 3) {
-    s["grid"] = {{"min", {-5, -22, -4}}, {"max", {105, 22, 6}}};
-    s["bodies"][0]["shape"] = {{"type", "box"}, {"min", {0, -18, 0}}, {"max", {100, 18, 2}}};
-    for (auto& l : s["loads"]) {
-      l["region"]["min"].push_back(-1);
-      l["region"]["max"].push_back(3);
-      l["traction"].push_back(0);
-    }
-    s["loads"].push_back({{"type", "symmetry"}, {"axis", "z"}, {"position", 0}});
-    s["loads"].push_back({{"type", "symmetry"}, {"axis", "z"}, {"position", 2}});
-    s["cracks"][0] = {{"name", "midplane"},
-                      {"rectangle", {{"corner", {-2, 0, -1}}, {"edges", {{0, 0, 4}, {52, 0, 0}}}}},
-                      {"contact", s["cracks"][0]["contact"]}};
-  }
-  return s;
-}
-
 TEST(Crack3dSlab, ThroughCrackedSlabOpensAsThePlaneStrainDcb) {
   const double end = 0.1;
-  Model<2> m2 = build_model<2>(dcb(2, end));
-  Model<3> m3 = build_model<3>(dcb(3, end));
+  Model<2> m2 = build_model<2>(test::dcb_slab_scene(2, end));
+  Model<3> m3 = build_model<3>(test::dcb_slab_scene(3, end));
   ASSERT_EQ(m3.particles.size(), 2 * m2.particles.size());
   ASSERT_DOUBLE_EQ(m2.dt, m3.dt);
   auto s2 = make_stepper<2>(m2);

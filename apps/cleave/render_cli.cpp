@@ -19,9 +19,11 @@ const char* kRenderHelp = R"(Usage:
   cleave compare OUT --photo IMG --frame SPEC --map X0,Y0,SCALE[,ANGLE] [--points FILE] [options]
   cleave compare OUT --run OTHER --frame SPEC --fringes MODE [options]
                                    fringe-order RMS difference between two runs of a scene
-  cleave plot OUT [--size WxH] [--images DIR] [--cod TIME]
-                                   energy (global.csv) and J/K (crack_tips.csv) plots; --cod: the
-                                   crack-opening profile of the crack frame nearest TIME (s)
+  cleave plot OUT [--size WxH] [--images DIR] [--cod TIME] [--front-time T] [--front-axis s|phi]
+                [--front-nodes I,J,...]
+                                   energy (global.csv) and J/K (crack_tips.csv) plots, and K along 3D
+                                   crack fronts (crack_fronts.csv): K_front.png, K_front_time.png;
+                                   --cod: the crack-opening profile of the crack frame nearest TIME (s)
 
 Frames and image:
   --frames SPEC        all (default) | every:K | time:T (nearest, seconds) | first | last | index:I
@@ -70,6 +72,13 @@ Photoelastic fringes (per pixel from the stress at that pixel):
 Movie:
   --movie FILE         encode the frames with ffmpeg (H.264 MP4); the PNG frames are kept
   --fps N              frame rate (default 10)
+3D crack fronts (plot; docs/rendering.md, "3D crack fronts: K along the front"):
+  --front-time T       K_front.png at the output time nearest T (s; default the last)
+  --front-axis s|phi   K_front.png against the arc length s in mm (default) or the ellipse angle
+                       phi in degrees (needs the phi_rad column: an elliptical or penny reference)
+  --front-nodes I,J    the nodes of K_front_time.png (KI against time), of every front (default:
+                       node 0, the middle node and the last). Flagged nodes (contour incomplete)
+                       break the curves and are drawn as black crosses
 Photo comparison (compare):
   --photo IMG          PNG or JPEG photograph
   --map X0,Y0,S[,A]    model position of the photo's top-left corner, model length per photo
@@ -98,6 +107,21 @@ std::vector<double> numbers(const std::string& opt, const std::string& s, std::s
 }
 double number(const std::string& opt, const std::string& s) { return numbers(opt, s, 1, 1)[0]; }
 
+// --front-nodes I,J,...: node indices, whole numbers from 0.
+std::vector<int> node_indices(const std::string& opt, const std::string& s) {
+  std::vector<int> v;
+  std::stringstream ss(s);
+  for (std::string part; std::getline(ss, part, ',');) {
+    char* end = nullptr;
+    const long i = std::strtol(part.c_str(), &end, 10);
+    if (part.empty() || *end != '\0' || i < 0 || i > 1000000)
+      throw std::invalid_argument(opt + ": '" + part + "' is not a node index (a whole number from 0)");
+    v.push_back(int(i));
+  }
+  if (v.empty()) throw std::invalid_argument(opt + " needs node indices, e.g. 0,12,23");
+  return v;
+}
+
 }  // namespace
 
 int viz_command(const std::vector<std::string>& args) {
@@ -114,6 +138,8 @@ int viz_command(const std::vector<std::string>& args) {
   std::optional<std::string> photo, points, map, other_run;
   std::string out_prefix;
   std::optional<double> cod_time;
+  FrontPlotOptions front;
+  std::string front_option;  // the first --front-* option given, for the messages of other commands
   bool thickness_given = false;
   std::optional<std::string> slice;  // in --length-unit, read once the unit is known
   double thickness_mm = 1.0, fringe_constant = 0, brewster = 0, wavelength_nm = 546, polarizer_deg = 0, kf = 0.0889;
@@ -124,6 +150,7 @@ int viz_command(const std::vector<std::string>& args) {
         if (i + 1 >= args.size()) throw std::invalid_argument(a + " needs a value");
         return args[++i];
       };
+      if (a.starts_with("--front-") && front_option.empty()) front_option = a;
       if (a == "--help" || a == "-h") {
         std::fputs(kRenderHelp, stdout);
         return 0;
@@ -192,6 +219,15 @@ int viz_command(const std::vector<std::string>& args) {
       else if (a == "--camera") o.camera = value();
       else if (a == "--view") coords.push_back({a, value()});
       else if (a == "--cod") cod_time = number(a, value());
+      else if (a == "--front-time") {
+        front.time = number(a, value());
+        if (!(*front.time >= 0)) throw std::invalid_argument("--front-time must be a time >= 0 (s)");
+      } else if (a == "--front-axis") {
+        const std::string v = value();
+        if (v == "s") front.axis = FrontAxis::ArcLength;
+        else if (v == "phi") front.axis = FrontAxis::EllipseAngle;
+        else throw std::invalid_argument("--front-axis must be s (arc length) or phi (ellipse angle), not '" + v + "'");
+      } else if (a == "--front-nodes") front.nodes = node_indices(a, value());
       else if (a == "--movie") o.movie = std::filesystem::path(value());
       else if (a == "--fps") {
         o.fps = int(number(a, value()));
@@ -236,15 +272,20 @@ int viz_command(const std::vector<std::string>& args) {
     if (needs_constant && fringe_constant <= 0 && brewster <= 0)
       throw std::invalid_argument("fringes need --fringe-constant (N/mm/fringe) or --stress-optic (Brewster)");
 
+    if (front.any() && cmd != "plot") throw std::invalid_argument(front_option + " is an option of cleave plot");
     if (cmd == "plot") {
       const auto dir = std::filesystem::is_directory(o.series) ? o.series : o.series.parent_path();
       const auto images = o.image_dir.empty() ? dir / "render" : o.image_dir;
       if (cod_time) {
+        if (front.any())
+          throw std::invalid_argument(front_option + " is for the K plots of 3D crack fronts; --cod draws only the "
+                                      "crack-opening profile: leave out one of them");
         std::printf("%s\n", render_cod_profile(dir, images, *cod_time, o.width, o.height).string().c_str());
         return 0;
       }
-      const auto files = render_plots(dir, images, o.width, o.height);
-      if (files.empty()) throw std::runtime_error(dir.string() + ": no global.csv or crack_tips.csv to plot");
+      const auto files = render_plots(dir, images, o.width, o.height, front);
+      if (files.empty())
+        throw std::runtime_error(dir.string() + ": no global.csv, crack_tips.csv or crack_fronts.csv to plot");
       for (const auto& f : files) std::printf("%s\n", f.string().c_str());
       return 0;
     }

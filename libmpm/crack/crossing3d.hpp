@@ -71,6 +71,27 @@ inline int volume_sign_exact(const Vec<3>& a, const Vec<3>& b, const Vec<3>& c, 
   return sum.sign();
 }
 
+// The exact sign of V(a, b, c, d) when three of the points share a coordinate k. With
+// b - a and c - a zero along k, V(a, b, c, d) = (d_k - a_k) [(b - a) x (c - a)]_k, and the latter is
+// the 2D orientation of a, b, c projected on the axes (k + 1, k + 2); V alternates under swaps of
+// points, which brings the other triples to that form. kNoAxisPlane when no three do.
+constexpr int kNoAxisPlane = 2;
+inline int axis_plane_volume_sign(const Vec<3>& a, const Vec<3>& b, const Vec<3>& c, const Vec<3>& d) {
+  auto orient = [](int k, const Vec<3>& p, const Vec<3>& q, const Vec<3>& r) {
+    const int u = (k + 1) % 3, v = (k + 2) % 3;
+    return area_sign(Vec<2>(p[u], p[v]), Vec<2>(q[u], q[v]), Vec<2>(r[u], r[v]));
+  };
+  auto height = [](double x, double base) { return (x > base) - (x < base); };
+  for (int k = 0; k < 3; ++k) {
+    const bool ab = a[k] == b[k], cd = c[k] == d[k];
+    if (ab && a[k] == c[k]) return height(d[k], a[k]) * orient(k, a, b, c);    // V(a,b,c,d)
+    if (ab && a[k] == d[k]) return -height(c[k], a[k]) * orient(k, a, b, d);   // -V(a,b,d,c)
+    if (cd && a[k] == c[k]) return height(b[k], a[k]) * orient(k, a, c, d);    // V(a,c,d,b)
+    if (cd && b[k] == c[k]) return -height(a[k], b[k]) * orient(k, b, c, d);   // -V(b,c,d,a)
+  }
+  return kNoAxisPlane;
+}
+
 }  // namespace detail
 
 // Exact sign (+1, -1 or 0) of signed_volume(a, b, c, d); 0 only for exactly coplanar points.
@@ -91,6 +112,9 @@ inline int volume_sign(const Vec<3>& a, const Vec<3>& b, const Vec<3>& c, const 
   // degenerate case: nodes on a crack laid on a node plane. Much cheaper than the expansions.)
   for (int k = 0; k < 3; ++k)
     if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k]) return 0;
+  // Three in an axis plane (a node on such a crack, an edge and a particle off it): the volume is
+  // the fourth point's height over the plane times the three's exact orientation in it.
+  if (const int s = detail::axis_plane_volume_sign(a, b, c, d); s != detail::kNoAxisPlane) return s;
   return detail::volume_sign_exact(a, b, c, d);
 }
 

@@ -19,6 +19,9 @@ struct CrackFront {
   // node order, smoothed over the two neighbouring edges) and ahead = tangent x normal, in the
   // surface's plane, pointing away from the crack into the uncracked material.
   std::vector<Vec<3>> normal, tangent, ahead;
+  // Per node, what the crack_tips checks found (front_parameters.hpp's kFlag bits, e.g. a contour
+  // that leaves the material); empty when the scene asks for no front parameters.
+  std::vector<uint8_t> flags;
 };
 
 // Unit normals at the points of s: the area-weighted mean of the normals of the triangles around

@@ -88,8 +88,20 @@ PointSet crack_point_set(const std::vector<crack::ExplicitCrack<3>>& cracks) {
   return ps;
 }
 
-PointSet crack_point_set(const std::vector<crack::ExplicitCrack<3>>&, const std::vector<crack::TipRecord>&) {
-  throw std::logic_error("crack-front parameters (J, K along 3D fronts) are not built yet");
+PointSet crack_point_set(const std::vector<crack::ExplicitCrack<3>>& cracks, const std::vector<crack::FrontRecord>& fronts) {
+  PointSet ps = crack_point_set(cracks);
+  std::vector<std::size_t> first(cracks.size(), 0);  // each crack's first point in ps
+  for (std::size_t c = 1; c < cracks.size(); ++c) first[c] = first[c - 1] + cracks[c - 1].points.size();
+  PointArray j1{"J1", 1, {}}, j2{"J2", 1, {}}, k1{"KI", 1, {}}, k2{"KII", 1, {}}, k3{"KIII", 1, {}}, fl{"flag", 1, {}};
+  for (PointArray* a : {&j1, &j2, &k1, &k2, &k3, &fl}) a->values.assign(ps.size(), 0.0);
+  for (const auto& r : fronts) {
+    const auto& c = cracks[static_cast<std::size_t>(r.crack)];
+    const std::size_t i = first[r.crack] + static_cast<std::size_t>(c.fronts[r.front].nodes[r.node]);
+    j1.values[i] = r.J1, j2.values[i] = r.J2, k1.values[i] = r.KI, k2.values[i] = r.KII, k3.values[i] = r.KIII;
+    fl.values[i] = r.flag;
+  }
+  for (PointArray* a : {&j1, &j2, &k1, &k2, &k3, &fl}) ps.arrays.push_back(std::move(*a));
+  return ps;
 }
 
 }  // namespace cleave::io

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "libmpm/crack/crack2d.hpp"
+#include "libmpm/crack/front_parameters.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/io/point_set.hpp"
 
@@ -26,9 +27,9 @@ PointSet crack_point_set(const std::vector<crack::Crack2D>& cracks, const std::v
 // fronts as line cells through their nodes, with front_normal, front_tangent and front_ahead (the
 // front's frame: crack/fronts.hpp) at the front nodes and zero elsewhere.
 PointSet crack_point_set(const std::vector<crack::ExplicitCrack<3>>& cracks);
-// Crack-front parameters in 3D are not built yet (issue 17; the scene reader refuses "crack_tips"
-// in 3D): throws std::logic_error.
-PointSet crack_point_set(const std::vector<crack::ExplicitCrack<3>>& cracks, const std::vector<crack::TipRecord>& tips);
+// The same with the crack-front parameters J1, J2 (J/m^2), KI, KII, KIII (Pa m^1/2) and flag
+// (crack_fronts.csv's) at the front nodes, zero at the other points.
+PointSet crack_point_set(const std::vector<crack::ExplicitCrack<3>>& cracks, const std::vector<crack::FrontRecord>& fronts);
 
 // Normal and tangential opening at point i of crack c (the quantities written above).
 Vec<2> crack_opening(const crack::Crack2D& c, std::size_t i);

@@ -67,6 +67,11 @@ class Method {
   // speed_m_per_s (crack: index of the crack or tracker; tip: 0 the start, 1 the end of a crack);
   // then the method's quantities with their units (J1_J_per_m2, KI_Pa_sqrt_m, ...).
   virtual std::vector<std::string> tip_columns() const { return {}; }
+  // The table's file: crack_tips.csv, or crack_fronts.csv for MPM's 3D fronts (one row per front
+  // node: time_s, crack, front, node, s_m, x_m, y_m, z_m, then the quantities; docs/scenes.md).
+  virtual std::string tip_file() const { return "crack_tips.csv"; }
+  // Rows per record of the table (for the size estimate).
+  virtual std::size_t tip_rows_per_record() const { return 2; }
   virtual std::vector<std::vector<double>> tip_rows() { return {}; }
   // Keys added to run.json beside the status (e.g. the first branching of a peridynamic crack).
   virtual nlohmann::json run_info() const { return nlohmann::json::object(); }

@@ -86,7 +86,7 @@ double earlier_output_bytes(const fs::path& out) {
   for (const auto& e : fs::directory_iterator(out, ec)) {
     const std::string n = e.path().filename().string();
     const bool ours = e.path().extension() == ".vtu" || e.path().extension() == ".pvd" || n == "global.csv" ||
-                      n == "crack_tips.csv" || n == "checkpoint.bin";
+                      n == "crack_tips.csv" || n == "crack_fronts.csv" || n == "checkpoint.bin";
     if (ours && e.is_regular_file(ec)) b += double(e.file_size(ec));
   }
   return b;
@@ -111,10 +111,11 @@ RunEstimate estimate_run(Method<Dim>& method) {
     e.frame_bytes += f.total;
     e.field_bytes += f.fields;
   }
-  // CSV values print with 17 significant digits: about 22 bytes each; two tips per crack or tracker row.
+  // CSV values print with 17 significant digits: about 22 bytes each; the method says how many rows a record has.
   const double global = records_to_end(s, s.output.global_interval) * double(method.global_columns().size()) * 22.0;
   const auto tip_cols = method.tip_columns();
-  const double tips = tip_cols.empty() ? 0.0 : records_to_end(s, s.output.tip_interval) * 2.0 * double(tip_cols.size()) * 22.0;
+  const double tips = tip_cols.empty() ? 0.0 : records_to_end(s, s.output.tip_interval) * double(method.tip_rows_per_record()) *
+                                                 double(tip_cols.size()) * 22.0;
   e.table_bytes = global + tips;
   CountingBuf counter;
   std::ostream counted(&counter);

@@ -59,7 +59,7 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
   const auto t0 = clock::now();
   const RunSettings& set = method.settings();
   const fs::path out = opt.out;
-  const fs::path ck_path = out / "checkpoint.bin", csv_path = out / "global.csv", tips_path = out / "crack_tips.csv";
+  const fs::path ck_path = out / "checkpoint.bin", csv_path = out / "global.csv", tips_path = out / method.tip_file();
   if (opt.resume && !fs::exists(ck_path)) throw RunRefused(ck_path.string() + ": no checkpoint to resume from");
   fs::create_directories(out);
   // Before anything in the directory is touched: a second run into it is refused here.
@@ -73,7 +73,8 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
   std::vector<std::string> any_series = {"particles", "cracks"};  // a directory may hold another method's run
   for (const auto& s : series)
     if (std::find(any_series.begin(), any_series.end(), s) == any_series.end()) any_series.push_back(s);
-  const std::vector<std::string> run_files = {"global.csv", "checkpoint.bin", "run.json", "crack_tips.csv"};
+  const std::vector<std::string> run_files = {"global.csv", "checkpoint.bin", "run.json", "crack_tips.csv",
+                                                "crack_fronts.csv"};
   io::remove_temporaries(out, any_series, run_files);  // what a killed run's atomic writes left
   std::vector<io::PvdIndex> pvd;
   for (const auto& s : series) pvd.emplace_back(out / (s + ".pvd"));

@@ -274,7 +274,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   // acceleration in the last step, each node's from the field the particle uses there.
   template <class Accel>
   std::vector<crack::TipRecord> tip_parameters(const Model<Dim>& m, const crack::TipSettings& ts, Accel&& accel) const {
-    if constexpr (Dim == 3) return {};  // J and K along 3D fronts: not built yet
+    if constexpr (Dim == 3) return {};  // 3D: the stepper's crack_front_parameters (crack_front_eval.hpp)
     else return evaluate_crack_tips<SF>(m, ts, std::forward<Accel>(accel));
   }
 

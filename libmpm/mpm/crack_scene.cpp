@@ -15,6 +15,8 @@
 #include "libmpm/crack/mesh3d.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/method/describe.hpp"
+#include "libmpm/mpm/crack_front_scene.hpp"
+#include "libmpm/mpm/material_probe.hpp"
 
 namespace cleave {
 namespace {
@@ -155,27 +157,7 @@ void warn_contour_meets_cracks(const Model<2>& m, const crack::TipSettings& s, c
 
 crack::TipSettings read_tip_settings(const json& scene, Model<2>& m, double time_scale,
                                           std::vector<std::string>& warnings) {
-  const ObjectReader r(scene["crack_tips"], "crack_tips", {"interval", "contour", "radius", "points", "volume_term"});
-  if (m.cracks.empty()) throw SceneError("crack_tips", "the scene declares no cracks (key \"cracks\")");
-  crack::TipSettings s;
-  // crack_tips.interval: the older spelling of output.tip_interval, the key of every method.
-  if (r.has("interval")) {
-    if (scene.contains("output") && scene["output"].contains("tip_interval"))
-      throw SceneError(r.at("interval"), "give output.tip_interval (or crack_tips.interval), not both");
-    m.output.tip_interval = r.positive("interval", time_scale);
-  }
-  const std::string shape = r.string_or("contour", "circle");
-  if (shape == "rectangle") s.contour = crack::TipSettings::Contour::Rectangle;
-  else if (shape != "circle") throw SceneError(r.at("contour"), "unknown contour \"" + shape + "\"; valid: circle, rectangle");
-  s.radius = r.positive_or("radius", 2.0);
-  if (s.radius < 1.0)
-    throw SceneError(r.at("radius"), "at least 1 cell (the contour must reach past the tip's own cell; default 2)");
-  // 16 suffice on the circle (seed 000); the square's corners need 32 for the same accuracy.
-  s.points = r.integer_or("points", s.contour == crack::TipSettings::Contour::Circle ? 16 : 32, 16, 100000);
-  if (r.has("volume_term")) {
-    if (!r["volume_term"].is_boolean()) throw SceneError(r.at("volume_term"), "expected true or false");
-    s.volume_term = r["volume_term"].get<bool>();
-  }
+  crack::TipSettings s = read_contour_settings(scene, m, time_scale, {});
   // Every contour, with the nodes it interpolates from, must lie inside the grid.
   const double h = m.grid.h;
   const double extent = s.radius * h * (s.contour == crack::TipSettings::Contour::Circle ? 1.0 : std::sqrt(2.0)) + h;
@@ -201,67 +183,12 @@ crack::TipSettings read_tip_settings(const json& scene, Model<2>& m, double time
   return s;
 }
 
-// The material of a 3D model as a point test, from the particles' domains (the cube of each
-// particle's spacing about it, from its volume), binned by grid cell; a point on the body's face
-// (a surface crack's edge placed on it) is outside.
-class Material3 {
- public:
-  explicit Material3(const Model<3>& m) : m_(m), half_(m.particles.size()) {
-    const auto& P = m.particles;
-    for (std::size_t p = 0; p < P.size(); ++p) {
-      half_[p] = 0.5 * std::cbrt(P.volume0[p]);
-      bins_.push_back({cell(P.x[p]), static_cast<int32_t>(p)});
-    }
-    std::sort(bins_.begin(), bins_.end());
-  }
-  // x is inside when the material surrounds it: each of the eight points x + eps (+-1, +-1, +-1)
-  // lies in a particle's open domain (so a point on the face shared by two particles' domains is
-  // inside, one on the body's face is not).
-  bool operator()(const Vec<3>& x) const {
-    const double eps = 1e-6 * m_.grid.h;
-    for (int k = 0; k < 8; ++k)
-      if (!within(x + eps * Vec<3>(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1), 0.0)) return false;
-    return true;
-  }
-  // Is x within `reach` (max-norm) of the material?
-  bool near(const Vec<3>& x, double reach) const { return within(x, reach); }
-
- private:
-  // Does some particle's open domain grown by reach hold x?
-  bool within(const Vec<3>& x, double reach) const {
-    const auto& P = m_.particles;
-    const double h = m_.grid.h;
-    const int r = 1 + static_cast<int>(std::ceil(reach / h));
-    for (int di = -r; di <= r; ++di)
-      for (int dj = -r; dj <= r; ++dj)
-        for (int dk = -r; dk <= r; ++dk) {
-          const int64_t c = cell(x + h * Vec<3>(di, dj, dk));
-          auto it = std::lower_bound(bins_.begin(), bins_.end(), std::pair<int64_t, int32_t>{c, -1});
-          for (; it != bins_.end() && it->first == c; ++it)
-            if (((x - P.x[it->second]).cwiseAbs().array() < half_[it->second] + reach).all()) return true;
-        }
-    return false;
-  }
-  int64_t cell(const Vec<3>& x) const {
-    int64_t c = 0;
-    for (int d = 0; d < 3; ++d) {
-      const int64_t n = m_.grid.nodes[d] + 2;  // one cell of room either side of the grid
-      const int64_t i = std::clamp<int64_t>(static_cast<int64_t>(std::floor((x[d] - m_.grid.origin[d]) / m_.grid.h)) + 1, 0, n - 1);
-      c = c * n + i;
-    }
-    return c;
-  }
-  const Model<3>& m_;
-  std::vector<double> half_;
-  std::vector<std::pair<int64_t, int32_t>> bins_;
-};
-
 // 3D: each surface clipped to the material (a surface crack's part outside the body goes, but for a
 // band of a cell; its edges there are mouths), checked against the grid, and its fronts found (boundary edges inside the
 // material) with their frames; "tips" other than "none" makes every front a crack tip.
 void build_cracks3d(Model<3>& m) {
   const double h = m.grid.h;
-  const Material3 inside(m);
+  const MaterialProbe inside(m);
   const Vec<3> lo = m.grid.origin, hi = m.grid.upper();
   for (auto& c : m.cracks) {
     const std::string path = "cracks[" + std::to_string(c.id) + "]";
@@ -310,16 +237,55 @@ void read_cracks(const json& scene, double length, Model<Dim>& m) {
 }
 
 template <int Dim>
-void read_crack_tips(const json& scene, double time_scale, Model<Dim>& m) {
+crack::TipSettings read_contour_settings(const json& scene, Model<Dim>& m, double time_scale,
+                                         std::initializer_list<const char*> more_keys) {
+  std::vector<const char*> keys = {"interval", "contour", "radius", "points", "volume_term"};
+  keys.insert(keys.end(), more_keys.begin(), more_keys.end());
+  const json& ct = scene["crack_tips"];
+  if (!ct.is_object()) throw SceneError("crack_tips", "expected an object");
+  for (auto it = ct.begin(); it != ct.end(); ++it)
+    if (std::find_if(keys.begin(), keys.end(), [&](const char* k) { return it.key() == k; }) == keys.end()) {
+      std::string valid;
+      for (const char* k : keys) valid += (valid.empty() ? "" : ", ") + std::string(k);
+      throw SceneError("crack_tips." + it.key(), "unknown key; valid keys: " + valid);
+    }
+  const ObjectReader r(ct, "crack_tips", {"interval", "contour", "radius", "points", "volume_term", "reference"});
+  if (m.cracks.empty()) throw SceneError("crack_tips", "the scene declares no cracks (key \"cracks\")");
+  crack::TipSettings s;
+  // crack_tips.interval: the older spelling of output.tip_interval, the key of every method.
+  if (r.has("interval")) {
+    if (scene.contains("output") && scene["output"].contains("tip_interval"))
+      throw SceneError(r.at("interval"), "give output.tip_interval (or crack_tips.interval), not both");
+    m.output.tip_interval = r.positive("interval", time_scale);
+  }
+  const std::string shape = r.string_or("contour", "circle");
+  if (shape == "rectangle") s.contour = crack::TipSettings::Contour::Rectangle;
+  else if (shape != "circle") throw SceneError(r.at("contour"), "unknown contour \"" + shape + "\"; valid: circle, rectangle");
+  s.radius = r.positive_or("radius", 2.0);
+  if (s.radius < 1.0)
+    throw SceneError(r.at("radius"), "at least 1 cell (the contour must reach past the tip's own cell; default 2)");
+  // 16 suffice on the circle (seed 000); the square's corners need 32 for the same accuracy.
+  s.points = r.integer_or("points", s.contour == crack::TipSettings::Contour::Circle ? 16 : 32, 16, 100000);
+  if (r.has("volume_term")) {
+    if (!r["volume_term"].is_boolean()) throw SceneError(r.at("volume_term"), "expected true or false");
+    s.volume_term = r["volume_term"].get<bool>();
+  }
+  return s;
+}
+
+template <int Dim>
+void read_crack_tips(const json& scene, const UnitSystem& units, Model<Dim>& m) {
   if constexpr (Dim == 3)
-    throw SceneError("crack_tips", "crack-tip parameters are computed for 2D cracks only");
+    read_front_tips(scene, units, m);
   else
-    m.crack_tips = read_tip_settings(scene, m, time_scale, m.warnings);
+    m.crack_tips = read_tip_settings(scene, m, units.factor(Quantity::Time), m.warnings);
 }
 
 template void read_cracks<2>(const json&, double, Model<2>&);
 template void read_cracks<3>(const json&, double, Model<3>&);
-template void read_crack_tips<2>(const json&, double, Model<2>&);
-template void read_crack_tips<3>(const json&, double, Model<3>&);
+template void read_crack_tips<2>(const json&, const UnitSystem&, Model<2>&);
+template void read_crack_tips<3>(const json&, const UnitSystem&, Model<3>&);
+template crack::TipSettings read_contour_settings<2>(const json&, Model<2>&, double, std::initializer_list<const char*>);
+template crack::TipSettings read_contour_settings<3>(const json&, Model<3>&, double, std::initializer_list<const char*>);
 
 }  // namespace cleave

@@ -3,6 +3,9 @@
 #pragma once
 #include <nlohmann/json.hpp>
 
+#include <initializer_list>
+
+#include "libmpm/core/units.hpp"
 #include "libmpm/mpm/model.hpp"
 
 namespace cleave {
@@ -15,8 +18,15 @@ template <int Dim>
 void read_cracks(const nlohmann::json& scene, double length, Model<Dim>& m);
 
 // "crack_tips": the J-integral contour (m.crack_tips) and the older spelling of the table's cadence
-// (crack_tips.interval for output.tip_interval; read_output must have run). 3D: an error.
+// (crack_tips.interval for output.tip_interval; read_output must have run). 2D: at the crack tips;
+// 3D: at the nodes of the crack fronts (crack_front_scene.hpp).
 template <int Dim>
-void read_crack_tips(const nlohmann::json& scene, double time_scale, Model<Dim>& m);
+void read_crack_tips(const nlohmann::json& scene, const UnitSystem& units, Model<Dim>& m);
+
+// The keys of "crack_tips" common to 2D and 3D (interval, contour, radius, points, volume_term),
+// with more_keys also allowed (read by the caller); checks that the scene has cracks.
+template <int Dim>
+crack::TipSettings read_contour_settings(const nlohmann::json& scene, Model<Dim>& m, double time_scale,
+                                         std::initializer_list<const char*> more_keys);
 
 }  // namespace cleave

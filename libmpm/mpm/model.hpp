@@ -9,6 +9,7 @@
 
 #include "libmpm/core/run_settings.hpp"
 #include "libmpm/crack/crack2d.hpp"
+#include "libmpm/crack/front_parameters.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/material/material.hpp"
 #include "libmpm/mpm/grid.hpp"
@@ -48,6 +49,8 @@ struct Model : RunSettings {
   Particles<Dim> particles;
   std::vector<crack::ExplicitCrack<Dim>> cracks;  // explicit cracks (none in uncracked scenes)
   std::optional<crack::TipSettings> crack_tips;  // J and K at the crack tips, when the scene asks
+  // 3D: the closed-form references crack_tips.reference names (crack_fronts.csv's *_ref columns).
+  std::vector<crack::EllipseReference> front_references;
   std::vector<TractionLoad<Dim>> tractions;
   Vec<Dim> gravity = Vec<Dim>::Zero();
   GridConditions<Dim> conditions;

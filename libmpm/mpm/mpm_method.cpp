@@ -51,12 +51,25 @@ class MpmMethod final : public Method<Dim> {
                          m.output.fields.size(), m.output.global_interval));
     if (m.crack_tips) {
       int tips = 0;
-      for (const auto& c : m.cracks) tips += c.tip[0] + c.tip[1];
+      std::size_t nodes = 0;
+      for (const auto& c : m.cracks)
+        if constexpr (Dim == 3) {
+          for (std::size_t f = 0; f < c.fronts.size(); ++f)
+            if (c.tip[f]) ++tips, nodes += c.fronts[f].nodes.size();
+        } else {
+          tips += c.tip[0] + c.tip[1];
+        }
       const auto& t = *m.crack_tips;
-      out.push_back(format("crack tips: %d, J by %s on a %s of %.6g cells (%d points), crack_tips.csv every %.6g s",
-                           tips, t.volume_term ? "eq. 33 (contour + volume)" : "eq. 32 (contour)",
+      out.push_back(format("%s, J by %s on a %s of %.6g cells (%d points), %s every %.6g s",
+                           Dim == 3 ? format("crack fronts: %d, %zu nodes", tips, nodes).c_str()
+                                    : format("crack tips: %d", tips).c_str(),
+                           t.volume_term ? "eq. 33 (contour + volume)" : "eq. 32 (contour)",
                            t.contour == crack::TipSettings::Contour::Circle ? "circle" : "square", t.radius, t.points,
-                           m.output.tip_interval));
+                           this->tip_file().c_str(), m.output.tip_interval));
+      for (const auto& r : m.front_references)
+        out.push_back(format("reference: crack '%s' as an embedded %s in an infinite body, %.6g Pa along (%.3g, %.3g, "
+                             "%.3g)", m.cracks[r.crack].name.c_str(), r.a == r.b ? "circle" : "ellipse", r.stress,
+                             r.load_axis.x(), r.load_axis.y(), r.load_axis.z()));
     }
     return out;
   }
@@ -112,18 +125,62 @@ class MpmMethod final : public Method<Dim> {
   }
   io::PointSet frame(std::size_t series) override {
     if (series == 0) return particle_point_set<Dim>(m_, m_.output.fields);
-    if (m_.crack_tips) return io::crack_point_set(m_.cracks, tips_now());
+    if constexpr (Dim == 3) {
+      if (m_.crack_tips) return io::crack_point_set(m_.cracks, fronts_now());
+    } else {
+      if (m_.crack_tips) return io::crack_point_set(m_.cracks, tips_now());
+    }
     return io::crack_point_set(m_.cracks);
   }
 
+  std::string tip_file() const override { return Dim == 3 ? "crack_fronts.csv" : "crack_tips.csv"; }
+  std::size_t tip_rows_per_record() const override {
+    std::size_t n = 0;
+    for (const auto& c : m_.cracks)
+      if constexpr (Dim == 3) {
+        for (std::size_t f = 0; f < c.fronts.size(); ++f) n += c.tip[f] ? c.fronts[f].nodes.size() : 0;
+      } else {
+        n += c.tip[0] + c.tip[1];
+      }
+    return n;
+  }
   std::vector<std::string> tip_columns() const override {
     if (!m_.crack_tips) return {};
+    if constexpr (Dim == 3) {
+      // crack_fronts.csv (docs/scenes.md, "Output files"): one row per front node per record.
+      std::vector<std::string> c = {"time_s", "crack", "front", "node", "s_m", "x_m", "y_m", "z_m",
+                                    "J1_J_per_m2", "J2_J_per_m2", "KI_Pa_sqrt_m", "KII_Pa_sqrt_m", "KIII_Pa_sqrt_m",
+                                    "flag"};
+      if (!m_.front_references.empty())
+        c.insert(c.end(), {"phi_rad", "KI_ref_Pa_sqrt_m", "KII_ref_Pa_sqrt_m", "KIII_ref_Pa_sqrt_m"});
+      return c;
+    }
     return table_.columns();
   }
   std::vector<std::vector<double>> tip_rows() override {
     std::vector<std::vector<double>> rows;
     if (!m_.crack_tips) return rows;
     const double t = stepper_->time();
+    if constexpr (Dim == 3) {
+      for (const auto& r : fronts_now()) {
+        std::vector<double> row = {t,       double(r.crack), double(r.front), double(r.node), r.s, r.x.x(), r.x.y(),
+                                   r.x.z(), r.J1,            r.J2,            r.KI,           r.KII, r.KIII, double(r.flag)};
+        if (!m_.front_references.empty()) {
+          const crack::FrontFrame f = crack::front_frame(m_.cracks[r.crack], r.front, r.node);
+          const crack::EllipseReference* ref = nullptr;
+          for (const auto& e : m_.front_references)
+            if (e.crack == r.crack) ref = &e;
+          if (ref) {
+            const auto k = ref->at(f);
+            row.insert(row.end(), {ref->phi(f.x), k.KI, k.KII, k.KIII});
+          } else {
+            row.insert(row.end(), 4, std::nan(""));
+          }
+        }
+        rows.push_back(std::move(row));
+      }
+      return rows;
+    }
     for (const auto& r : tips_now()) {
       Vec<Dim> x = Vec<Dim>::Zero();  // tips are of 2D cracks (the only explicit cracks built so far)
       x.template head<2>() = r.x;
@@ -138,6 +195,7 @@ class MpmMethod final : public Method<Dim> {
     w.value(stepper_->external_work());
     const auto& P = m_.particles;
     w.array(P.x), w.array(P.v), w.array(P.u), w.array(P.stress), w.array(P.strain), w.array(P.rotation);
+    if (!P.rotation3.empty()) w.array(P.rotation3);  // 3D with crack-front parameters only
     for (const auto& c : m_.cracks) w.array(c.points), w.array(c.above), w.array(c.below);
     table_.save(w);
   }
@@ -145,10 +203,11 @@ class MpmMethod final : public Method<Dim> {
     double t = 0, work = 0;
     long step = 0;
     r.value(t), r.value(step), r.value(work);
-    tips_step_ = -1;  // the state changes under the cache
+    tips_step_ = fronts_step_ = -1;  // the state changes under the caches
     auto& P = m_.particles;
     r.array(P.x, "particles"), r.array(P.v, "particles"), r.array(P.u, "particles");
     r.array(P.stress, "particles"), r.array(P.strain, "particles"), r.array(P.rotation, "particle rotations");
+    if (!P.rotation3.empty()) r.array(P.rotation3, "particle rotations");
     for (auto& c : m_.cracks) {
       r.array(c.points, "crack points"), r.array(c.above, "crack points"), r.array(c.below, "crack points");
       c.update_extent();
@@ -169,6 +228,15 @@ class MpmMethod final : public Method<Dim> {
     return tips_;
   }
 
+  // The same for 3D fronts.
+  const std::vector<crack::FrontRecord>& fronts_now() {
+    if (fronts_step_ != stepper_->step_count()) {
+      fronts_ = stepper_->crack_front_parameters(*m_.crack_tips);
+      fronts_step_ = stepper_->step_count();
+    }
+    return fronts_;
+  }
+
   std::unique_ptr<Model<Dim>> owned_;  // null when the caller owns the model
   Model<Dim>& m_;
   std::unique_ptr<Stepper<Dim>> stepper_;
@@ -176,6 +244,8 @@ class MpmMethod final : public Method<Dim> {
   TipTable<Dim> table_{m_.cracks.size(), 2,
                        {"J1_J_per_m2", "J2_J_per_m2", "KI_Pa_sqrt_m", "KII_Pa_sqrt_m"}};  // crack_tips.csv; 2D: two ends
   long tips_step_ = -1;  // step of tips_; -1: none yet
+  std::vector<crack::FrontRecord> fronts_;
+  long fronts_step_ = -1;
 };
 
 }  // namespace

@@ -357,7 +357,7 @@ Model<Dim> build_model(const json& scene) {
   scene::read_output(scene, units, kFieldNames, "", top.has("crack_tips"), m);
   scene::check_frame_count(m);
   m.memory_bytes = mpm_memory_bytes<Dim>(double(m.particles.size()), grid_nodes);
-  if (top.has("crack_tips")) read_crack_tips(scene, units.factor(Quantity::Time), m);
+  if (top.has("crack_tips")) read_crack_tips(scene, units, m);
   // Bodies that share grid nodes with very different mass per particle make the node's effective
   // wave speed exceed the material estimate; linear shape functions then need a smaller CFL
   // (docs/validation.md, beam impact: 240x, unstable at CFL 0.5, stable at 0.1).

@@ -10,6 +10,7 @@
 #include "libmpm/material/linear_elastic.hpp"
 #include "libmpm/method/describe.hpp"
 #include "libmpm/mpm/crack_fields.hpp"
+#include "libmpm/mpm/crack_front_eval.hpp"
 #include "libmpm/core/parallel.hpp"
 #include "libmpm/mpm/strip_order.hpp"
 #include "libmpm/mpm/stencil.hpp"
@@ -50,13 +51,25 @@ class MpmStepper final : public Stepper<Dim> {
     if (!cf_) return {};
     // A particle's acceleration in the last step: Task 5's nodal accelerations, each node's from
     // the field the particle uses there.
-    return cf_->tip_parameters(m_, ts, [&](std::size_t p) {
-      St s;
-      s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
-      Vec<Dim> a = Vec<Dim>::Zero();
-      s.for_each_weight([&](int64_t n, double w) { a += w * cf_->kin(n, cf_->field_of(p, n, node_position(n))).a; });
-      return a;
-    });
+    return cf_->tip_parameters(m_, ts, [&](std::size_t p) { return particle_acceleration(p); });
+  }
+  // A particle's acceleration in the last step: Task 5's nodal accelerations, each node's from the
+  // field the particle uses there.
+  Vec<Dim> particle_acceleration(std::size_t p) const {
+    St s;
+    s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
+    Vec<Dim> a = Vec<Dim>::Zero();
+    s.for_each_weight([&](int64_t n, double w) { a += w * cf_->kin(n, cf_->field_of(p, n, node_position(n))).a; });
+    return a;
+  }
+
+  std::vector<crack::FrontRecord> crack_front_parameters(const crack::TipSettings& ts) override {
+    if constexpr (Dim == 3) {
+      if (!cf_) return {};
+      return evaluate_crack_fronts<SF>(m_, ts, [&](std::size_t p) { return particle_acceleration(p); });
+    } else {
+      return {};
+    }
   }
 
   double time() const override { return time_; }

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "libmpm/crack/front_parameters.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/method/method.hpp"  // StepProblem
 #include "libmpm/mpm/model.hpp"
@@ -38,6 +39,8 @@ class Stepper {
   virtual std::string take_warning() { return {}; }
   // J and K at every crack tip of a 2D cracked model, from the current state (empty otherwise).
   virtual std::vector<crack::TipRecord> crack_tip_parameters(const crack::TipSettings&) { return {}; }
+  // J and K_I, K_II, K_III at every node of the fronts of a 3D cracked model (empty otherwise).
+  virtual std::vector<crack::FrontRecord> crack_front_parameters(const crack::TipSettings&) { return {}; }
   // Restores counters when resuming from a checkpoint.
   virtual void restore(double time, long step, double external_work) = 0;
 };

@@ -20,6 +20,10 @@ struct Particles {
   std::vector<double> half_width;  // half the particle's domain, in cells (uGIMP)
   std::vector<int32_t> material;   // index into Model::materials
   std::vector<double> rotation;    // 2D only: in-plane rotation (rad) integrated from the spin
+  // 3D, only when the scene asks for crack-front parameters (their displacement gradients need the
+  // rotation, the strain alone is symmetric): the rotation vector (W_21, W_02, W_10) integrated from
+  // the spin. Empty otherwise, so that other 3D runs neither store nor update it.
+  std::vector<Vec<3>> rotation3;
 
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n) {
@@ -41,11 +45,13 @@ struct Particles {
   }
 };
 
-// The in-plane rotation of particle p advanced by the spin of its velocity gradient L over dts (2D,
-// for the renderer and for displacement contact detection); 3D particles carry no rotation.
+// The rotation of particle p advanced by the spin of its velocity gradient L over dts (2D: in-plane,
+// for the renderer and for displacement contact detection; 3D: only where rotation3 is kept).
 template <int Dim>
 CLEAVE_INLINE inline void integrate_spin(Particles<Dim>& P, std::size_t p, const Mat<Dim>& L, double dts) {
   if constexpr (Dim == 2) P.rotation[p] += 0.5 * (L(1, 0) - L(0, 1)) * dts;
+  else if (!P.rotation3.empty())
+    P.rotation3[p] += (0.5 * dts) * Vec<3>(L(2, 1) - L(1, 2), L(0, 2) - L(2, 0), L(1, 0) - L(0, 1));
 }
 
 }  // namespace cleave

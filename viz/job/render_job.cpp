@@ -236,7 +236,9 @@ RenderResult render_series(const RenderOptions& options, const std::function<voi
   return res;
 }
 
-std::vector<fs::path> render_plots(const fs::path& dir, const fs::path& images, int width, int height) {
+std::vector<fs::path> render_plots(const fs::path& dir, const fs::path& images, int width, int height,
+                                   const FrontPlotOptions& front) {
+  const auto fronts = front_plots(dir, front);  // checks the front options before any image is written
   std::vector<fs::path> out;
   fs::create_directories(images);
   auto read_csv = [](const fs::path& file, std::vector<std::string>& header) {
@@ -313,6 +315,7 @@ std::vector<fs::path> render_plots(const fs::path& dir, const fs::path& images, 
       out.push_back(f);
     }
   }
+  for (auto& f : write_front_plots(ctx, images, fronts)) out.push_back(std::move(f));
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "viz/job/front_plots.hpp"
 #include "viz/optics/photoelastic.hpp"
 #include "viz/raster/rasterize.hpp"
 #include "viz/raster/series.hpp"
@@ -114,9 +115,10 @@ std::vector<std::array<double, 3>> read_fringe_points(const std::filesystem::pat
 double fringe_order_rms(const ParticleFrame&, const PhotoelasticSettings&, const std::vector<std::array<double, 3>>& pts,
                         std::size_t* used = nullptr);
 
-// Plots: energies from OUT/global.csv, and J/K from OUT/crack_tips.csv when present.
+// Plots: energies from OUT/global.csv, J/K from OUT/crack_tips.csv, and K along 3D crack fronts from
+// OUT/crack_fronts.csv (front_plots, with `front`'s options) when present.
 std::vector<std::filesystem::path> render_plots(const std::filesystem::path& out_dir, const std::filesystem::path& image_dir,
-                                                int width, int height);
+                                                int width, int height, const FrontPlotOptions& front = {});
 
 // Crack-opening profile of the crack frame nearest to `time`: normal and tangential crack opening
 // displacement against the distance along each crack, from OUT/cracks.pvd. Crack VTU files hold

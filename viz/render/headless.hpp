@@ -157,12 +157,37 @@ Image render_particles_3d(HeadlessContext& context, const std::vector<std::array
 struct PlotSeries {
   std::string name;
   std::vector<double> x, y;
+  // How the series is drawn. The defaults draw what plots always drew: a solid line 2 pixels wide in
+  // the palette colour of the series' place in the list, no markers.
+  enum class Line { Solid, Dashed, None };
+  Line line = Line::Solid;
+  bool markers = false;  // a cross at each point
+  std::optional<std::array<unsigned char, 3>> colour = std::nullopt;  // default: plot_colour(its place)
+};
+
+// The plots' palette (matplotlib's tab10: blue, red, green, orange, purple, ...), cycling.
+std::array<unsigned char, 3> plot_colour(std::size_t k);
+
+// Where render_plot puts the legend, and the room around the data; the defaults draw plots as they
+// always were.
+enum class PlotLegend {
+  Inside,  // over the plot's top-right corner
+  Right,   // to the right of the axes: the plot narrows so that no curve runs under a long legend
+};
+struct PlotLayout {
+  PlotLegend legend = PlotLegend::Inside;
+  // Room around the data on each axis, a fraction of its span (0.05: matplotlib's margins), so that
+  // points on the data's edge (markers, a constant reference) are not drawn on the frame; 0: VTK's
+  // automatic range (the data's, rounded out to ticks).
+  double margin = 0;
 };
 
 // Line plot (vtkChartXY drawn through a vtkContextActor in the context's window), white background,
-// one colour per series, legend when any series is named. Throws std::invalid_argument when a
+// one colour per series, legend when any series is named. A point with a non-finite x or y is left
+// out and breaks the line there (a point left alone between such gaps is drawn as a cross; a series
+// with no finite point draws nothing and is not in the legend). Throws std::invalid_argument when a
 // series' x and y differ in length.
 Image render_plot(HeadlessContext& context, const std::vector<PlotSeries>& series, const std::string& title,
-                  const std::string& xlabel, const std::string& ylabel);
+                  const std::string& xlabel, const std::string& ylabel, const PlotLayout& layout = {});
 
 }  // namespace cleave::viz

@@ -3,12 +3,15 @@
 
 #include <vtkAxis.h>
 #include <vtkChart.h>
+#include <vtkChartLegend.h>
 #include <vtkChartXY.h>
 #include <vtkContextActor.h>
 #include <vtkContextScene.h>
 #include <vtkDoubleArray.h>
 #include <vtkNew.h>
+#include <vtkPen.h>
 #include <vtkPlot.h>
+#include <vtkPlotPoints.h>
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 #include <vtkTable.h>
@@ -24,22 +27,31 @@ namespace cleave::viz {
 
 using namespace detail;
 
+namespace {
+
+constexpr std::array<std::array<unsigned char, 3>, 10> kPalette{{{31, 119, 180},
+                                                                 {214, 39, 40},
+                                                                 {44, 160, 44},
+                                                                 {255, 127, 14},
+                                                                 {148, 103, 189},
+                                                                 {140, 86, 75},
+                                                                 {227, 119, 194},
+                                                                 {127, 127, 127},
+                                                                 {188, 189, 34},
+                                                                 {23, 190, 207}}};
+
+bool finite_point(const PlotSeries& s, std::size_t i) { return std::isfinite(s.x[i]) && std::isfinite(s.y[i]); }
+
+}  // namespace
+
+std::array<unsigned char, 3> plot_colour(std::size_t k) { return kPalette[k % kPalette.size()]; }
+
 Image render_plot(HeadlessContext& context, const std::vector<PlotSeries>& series, const std::string& title,
-                  const std::string& xlabel, const std::string& ylabel) {
+                  const std::string& xlabel, const std::string& ylabel, const PlotLayout& layout) {
   for (const auto& s : series)
     if (s.x.size() != s.y.size())
       throw std::invalid_argument("render_plot: series '" + s.name + "' has " + std::to_string(s.x.size()) +
                                   " x and " + std::to_string(s.y.size()) + " y values");
-  static constexpr std::array<std::array<unsigned char, 3>, 10> palette{{{31, 119, 180},
-                                                                          {214, 39, 40},
-                                                                          {44, 160, 44},
-                                                                          {255, 127, 14},
-                                                                          {148, 103, 189},
-                                                                          {140, 86, 75},
-                                                                          {227, 119, 194},
-                                                                          {127, 127, 127},
-                                                                          {188, 189, 34},
-                                                                          {23, 190, 207}}};
   const int H = context.height();
   const int title_font = std::clamp(static_cast<int>(std::lround(0.04 * H)), 10, 72);
   const int label_font = std::max(9, static_cast<int>(std::lround(0.7 * title_font)));
@@ -61,30 +73,87 @@ Image render_plot(HeadlessContext& context, const std::vector<PlotSeries>& serie
   }
   bool named = false;
   std::vector<vtkSmartPointer<vtkTable>> tables;
+  const float marker_size = static_cast<float>(std::max(7, label_font / 2));
   for (size_t k = 0; k < series.size(); ++k) {
     const auto& s = series[k];
     named = named || !s.name.empty();
-    vtkNew<vtkDoubleArray> x, y;
-    x->SetName("x");
-    y->SetName(s.name.empty() ? ("series " + std::to_string(k + 1)).c_str() : s.name.c_str());
-    x->SetNumberOfTuples(static_cast<vtkIdType>(s.x.size()));
-    y->SetNumberOfTuples(static_cast<vtkIdType>(s.y.size()));
-    for (size_t i = 0; i < s.x.size(); ++i) {
-      x->SetValue(static_cast<vtkIdType>(i), s.x[i]);
-      y->SetValue(static_cast<vtkIdType>(i), s.y[i]);
+    const std::string y_name = s.name.empty() ? ("series " + std::to_string(k + 1)) : s.name;
+    const auto& c = s.colour ? *s.colour : kPalette[k % kPalette.size()];
+    // One vtkPlot per run of finite points (the whole series when all are finite, as plots always
+    // were); only the first of a series shows in the legend.
+    std::vector<std::pair<std::size_t, std::size_t>> runs;  // [begin, end)
+    bool all_finite = true;
+    for (std::size_t i = 0; i < s.x.size(); ++i) all_finite = all_finite && finite_point(s, i);
+    if (all_finite || s.line == PlotSeries::Line::None) {
+      runs.push_back({0, s.x.size()});
+    } else {
+      for (std::size_t i = 0; i < s.x.size();) {
+        while (i < s.x.size() && !finite_point(s, i)) ++i;
+        const std::size_t b = i;
+        while (i < s.x.size() && finite_point(s, i)) ++i;
+        if (i > b) runs.push_back({b, i});
+      }
     }
-    auto table = vtkSmartPointer<vtkTable>::New();
-    table->AddColumn(x);
-    table->AddColumn(y);
-    tables.push_back(table);
-    vtkPlot* plot = chart->AddPlot(vtkChart::LINE);
-    plot->SetInputData(table, 0, 1);
-    const auto& c = palette[k % palette.size()];
-    plot->SetColor(c[0], c[1], c[2], 255);
-    plot->SetWidth(2.0);
-    if (!s.name.empty()) plot->SetLabel(s.name);
+    bool first = true;
+    for (const auto& [b, e] : runs) {
+      vtkNew<vtkDoubleArray> x, y;
+      x->SetName("x");
+      y->SetName(y_name.c_str());
+      std::vector<std::size_t> idx;
+      for (std::size_t i = b; i < e; ++i)
+        if (all_finite || finite_point(s, i)) idx.push_back(i);
+      x->SetNumberOfTuples(static_cast<vtkIdType>(idx.size()));
+      y->SetNumberOfTuples(static_cast<vtkIdType>(idx.size()));
+      for (std::size_t j = 0; j < idx.size(); ++j) {
+        x->SetValue(static_cast<vtkIdType>(j), s.x[idx[j]]);
+        y->SetValue(static_cast<vtkIdType>(j), s.y[idx[j]]);
+      }
+      auto table = vtkSmartPointer<vtkTable>::New();
+      table->AddColumn(x);
+      table->AddColumn(y);
+      tables.push_back(table);
+      // A point left alone between gaps has no line to draw: a cross shows it.
+      const bool points = s.line == PlotSeries::Line::None || (!all_finite && idx.size() == 1);
+      vtkPlot* plot = chart->AddPlot(points ? vtkChart::POINTS : vtkChart::LINE);
+      plot->SetInputData(table, 0, 1);
+      plot->SetColor(c[0], c[1], c[2], 255);
+      plot->SetWidth(2.0);
+      if (s.line == PlotSeries::Line::Dashed) plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
+      if (points || s.markers) {
+        auto* pp = vtkPlotPoints::SafeDownCast(plot);
+        if (pp) pp->SetMarkerStyle(vtkPlotPoints::CROSS), pp->SetMarkerSize(marker_size);
+      }
+      if (!s.name.empty()) plot->SetLabel(s.name);
+      if (!first) plot->SetLegendVisibility(false);
+      first = false;
+    }
   }
   chart->SetShowLegend(named);
+  if (layout.legend == PlotLegend::Right) {
+    chart->GetLegend()->SetInline(false);
+    chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
+    chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
+  }
+
+  if (layout.margin > 0) {
+    // The finite points' box, widened by the margin on each side (of a tenth of the value when flat).
+    std::array<double, 4> box{INFINITY, -INFINITY, INFINITY, -INFINITY};
+    for (const auto& s : series)
+      for (std::size_t i = 0; i < s.x.size(); ++i)
+        if (finite_point(s, i)) {
+          box[0] = std::min(box[0], s.x[i]), box[1] = std::max(box[1], s.x[i]);
+          box[2] = std::min(box[2], s.y[i]), box[3] = std::max(box[3], s.y[i]);
+        }
+    for (int a : {0, 1}) {
+      double lo = box[2 * a], hi = box[2 * a + 1];
+      if (!(lo <= hi)) continue;  // no finite point
+      const double span = hi > lo ? hi - lo : std::max(std::abs(lo), 1e-30) * 0.1;
+      lo -= layout.margin * span, hi += layout.margin * span;
+      vtkAxis* axis = chart->GetAxis(a == 0 ? vtkAxis::BOTTOM : vtkAxis::LEFT);
+      axis->SetBehavior(vtkAxis::FIXED);
+      axis->SetRange(lo, hi);
+    }
+  }
 
   vtkNew<vtkContextScene> context_scene;
   context_scene->AddItem(chart);

@@ -9,6 +9,7 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "libmpm/core/parallel.hpp"
@@ -33,6 +34,7 @@ class Classification : public SpatialIndex<Dim, SF> {
   using typename Base::Entry;
   using Base::cell_head_, Base::cell_of, Base::cracks_, Base::entries_, Base::G_, Base::inv_h_;
   using Base::node_position, Base::stride_, Base::tri_hi_, Base::tri_ids_, Base::tri_lo_;
+  using Base::crack_epoch_, Base::index_epoch_, Base::tight_, Base::tight_begin_, Base::tight_head, Base::tight_ids_;
   static constexpr uint32_t kOverflow = crack::kFieldKeyOverflow;  // a line crossing three or more cracks
 
   explicit Classification(Model<Dim>& m) : Base(m), P_(m.particles) {
@@ -43,6 +45,7 @@ class Classification : public SpatialIndex<Dim, SF> {
   // The list of near particles, in particle order, from the flags (only when a flag changed): in
   // parallel over fixed chunks, each filled at the offset of a prefix sum of the chunk counts.
   void collect_near_particles() {
+    kept_epoch_ = ~uint64_t{0};  // a new list: no particle keeps its keys (classify_pairs3)
     for (int32_t p : near_) near_index_[p] = -1;
     const std::size_t np = P_.size();
     constexpr std::size_t kChunk = 8192;
@@ -250,7 +253,16 @@ class Classification : public SpatialIndex<Dim, SF> {
     int32_t ids[kMaxTri];
     SubRange sub[kMaxSub];  // per entry: its triangles in ids[lo .. hi]
     int nsub = 0, nid = 0;
-    for (int32_t e = cell_head_[cell]; e >= 0; e = entries_[e].next) {
+    // The triangles meeting B from the cell's full lists, or from the fewer of a nearby cell's tight
+    // lists (tight_head: the same triangles in the same order); each way with at most kMaxSub entries.
+    auto entries_from = [&](int32_t e) {
+      int n = 0;
+      for (; e >= 0 && n <= kMaxSub; e = entries_[e].next) ++n;
+      return n;
+    };
+    int32_t th = entries_from(cell_head_[cell]) <= kMaxSub ? tight_head(cell, lo, hi) : -1;
+    if (th >= 0 && entries_from(th) > kMaxSub) th = -1;
+    for (int32_t e = th >= 0 ? th : cell_head_[cell]; e >= 0; e = entries_[e].next) {
       const Entry& en = entries_[e];
       if (nsub == kMaxSub) {
         nsub = -1;
@@ -258,15 +270,17 @@ class Classification : public SpatialIndex<Dim, SF> {
       }
       const int32_t first = nid;
       if ((en.hi.array() >= lo.array()).all() && (en.lo.array() <= hi.array()).all()) {
-        for (int32_t a = en.seg_lo; a <= en.seg_hi && nsub >= 0; ++a) {
-          const V& tlo = tri_lo_[en.crack][tri_ids_[a]];
-          const V& thi = tri_hi_[en.crack][tri_ids_[a]];
-          if (!((thi.array() >= lo.array()).all() && (tlo.array() <= hi.array()).all())) continue;
+        const int32_t* list = th >= 0 ? tight_ids_.data() + tight_begin_[e] : tri_ids_.data() + en.seg_lo;
+        const int32_t n = th >= 0 ? tight_[e].count : en.seg_hi - en.seg_lo + 1;
+        const std::vector<V>&tlo = tri_lo_[en.crack], &thi = tri_hi_[en.crack];
+        for (int32_t a = 0; a < n; ++a) {
+          const int32_t t = list[a];
+          if (!((thi[t].array() >= lo.array()).all() && (tlo[t].array() <= hi.array()).all())) continue;
           if (nid == kMaxTri) {
             nsub = -1;
             break;
           }
-          ids[nid++] = tri_ids_[a];
+          ids[nid++] = t;
         }
         if (nsub < 0) break;
       }
@@ -333,13 +347,24 @@ class Classification : public SpatialIndex<Dim, SF> {
   }
 
   // 3D: every pair of every near particle by classify_block3 on its stencil's nodes.
+  // A particle keeps its stencil and keys from the last step while they are functions of the same
+  // inputs: the same near list (collect_near_particles), crack geometry (crack_epoch_), position and
+  // half-width, bit for bit (a crack at rest among particles at rest, before the load reaches it).
   void classify_pairs3(const std::size_t nn) {
+    const bool keep = kept_epoch_ == crack_epoch_;
+    kept_epoch_ = index_epoch_ == crack_epoch_ ? crack_epoch_ : ~uint64_t{0};  // (keys of a fresh index only)
+    kept_x_.resize(nn);
+    kept_hw_.resize(nn);
 #pragma omp parallel for schedule(static) if (nn >= 512)
     for (std::size_t k = 0; k < nn; ++k) {
       const std::size_t p = static_cast<std::size_t>(near_[k]);
       const V xp = P_.x[p];
+      const double hw = P_.half_width[p];
+      if (keep && std::memcmp(&kept_x_[k], &xp, sizeof(V)) == 0 && std::memcmp(&kept_hw_[k], &hw, sizeof hw) == 0)
+        continue;
+      kept_x_[k] = xp, kept_hw_[k] = hw;
       St& s = near_st_[k];
-      s.eval(G_, stride_, inv_h_, xp, P_.half_width[p]);
+      s.eval(G_, stride_, inv_h_, xp, hw);
       int64_t i0[3];
       int64_t r = s.base;
       for (int d = 0; d < 3; ++d) i0[d] = r / static_cast<int64_t>(stride_[d]), r %= static_cast<int64_t>(stride_[d]);
@@ -367,6 +392,10 @@ class Classification : public SpatialIndex<Dim, SF> {
   std::vector<uint8_t> key_any_;  // per near particle: does a key differ from 0 (set by classify_pairs)
   std::vector<uint32_t> pair_key_;  // per pair (near particle k, stencil node j: k N + j): field key
   std::vector<int32_t> pair_seg_;   // per pair, two: the segment crossed for each code of the key
+  // 3D, per near particle: position and half-width of its last classification, valid at kept_epoch_.
+  std::vector<V> kept_x_;
+  std::vector<double> kept_hw_;
+  uint64_t kept_epoch_ = ~uint64_t{0};
 };
 
 }  // namespace cleave::crack_fields

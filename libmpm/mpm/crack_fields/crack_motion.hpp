@@ -73,6 +73,7 @@ class CrackMotion : public FieldSlots<Dim, SF> {
       c.update_extent();
       // Every crack's lines may cross this one, which has moved: the next crack classifies afresh.
       std::fill(side_valid_.begin(), side_valid_.end(), 0);
+      if constexpr (Dim == 3) note_crack_state();  // (and the side keys kept are those of before)
     }
   }
 
@@ -81,6 +82,7 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   using Base::kExtra, Base::kOverflow, Base::linear_nodes, Base::mass_, Base::momentum_, Base::node_block_;
   using Base::cell_of, Base::node_position, Base::parallel_points, Base::pos0_, Base::pos_;
   using Base::block_key_, Base::block_node_, Base::kin_, Base::xkin_;
+  using Base::crack_epoch_, Base::index_epoch_, Base::note_crack_state;
   static constexpr double kProbe = 1e-3;  // cells: how far above/below a surface its probe sits
 
   CrackMotion(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin) : Base(m, grid, kin) {
@@ -253,55 +255,82 @@ class CrackMotion : public FieldSlots<Dim, SF> {
     }
     return wsum > 0.0 ? V(sum / wsum) : fallback;
   }
+  // 3D: a surface's nodes, weights and keys are functions of the crack geometry alone, so they are
+  // kept while crack_epoch_ stays (SpatialIndex::note_crack_state); only the fields that the keys
+  // select are found afresh (the fields' slots are numbered anew every step).
+  struct SideKeys {
+    int count = 0;
+    int64_t node[1 << Dim];
+    double w[1 << Dim];
+    uint32_t key[1 << Dim];
+  };
   void find_side_fields(std::size_t ci) {
     const crack::ExplicitCrack<Dim>& c = cracks_[ci];
-    if constexpr (Dim == 3) point_normal_[ci] = crack::point_normals(c);
+    bool keys_kept = false;
+    if constexpr (Dim == 3) {
+      side_keys_.resize(cracks_.size());
+      side_key_epoch_.resize(cracks_.size(), ~uint64_t{0});
+      keys_kept = side_key_epoch_[ci] == crack_epoch_ && side_keys_[ci].size() == 2 * c.points.size();
+      // Keys found with an index of an earlier geometry (a crack moved by move_cracks before this
+      // one's turn) are not those of a fresh index: not kept.
+      side_key_epoch_[ci] = index_epoch_ == crack_epoch_ ? crack_epoch_ : ~uint64_t{0};
+      if (!keys_kept) {
+        point_normal_[ci] = crack::point_normals(c);
+        side_keys_[ci].resize(2 * c.points.size());
+      }
+    }
     auto& out = side_fields_[ci];
     out.assign(2 * c.points.size(), SideFields{});
     const std::size_t np = c.points.size();
 #pragma omp parallel for schedule(static) if (parallel_points(np))
     for (std::size_t i = 0; i < np; ++i) {
       if (is_tip(c, i)) continue;  // a tip's surfaces follow the point itself
-      const V nl = left_normal(c, i);
-      // The probes sit just off the crack line itself, not off the surfaces: a surface that has
-      // moved across the line (faces pressed together) must keep following its own side's field.
       for (int side = 0; side < 2; ++side) {
-        const V probe = side == 0 ? V(c.points[i] + kProbe * G_.h * nl) : V(c.points[i] - kProbe * G_.h * nl);
+        SideKeys local;
+        SideKeys& sk = Dim == 3 ? side_keys_[ci][2 * i + side] : local;
+        if (!keys_kept) surface_keys(c, i, side, sk);
         SideFields& sf = out[2 * i + side];
-        constexpr int kN = 1 << Dim;
-        int64_t node[kN];
-        double weight[kN];
-        int nn = 0;
-        linear_nodes(side == 0 ? c.above[i] : c.below[i], [&](int64_t n, double w) { node[nn] = n, weight[nn++] = w; });
-        uint32_t key[kN] = {};
-        if constexpr (Dim == 3) {  // the eight lines at once (classify_block3: same keys)
-          const int64_t cell = nn == kN ? cell_of(probe) : -1;
-          if (cell >= 0) {
-            double nc[3][2];
-            for (int a = 0; a < 2; ++a)
-              nc[0][a] = node_position(node[4 * a]).x(), nc[1][a] = node_position(node[2 * a]).y(),
-              nc[2][a] = node_position(node[a]).z();
-            int32_t seg[2];
-            this->template classify_block3<2>(
-                cell, probe, nc, [](int) { return true; }, [&](int) { return seg; },
-                [&](int j, uint32_t k) { key[j] = k; });
-          }
-        } else {
-          for (int e = 0; e < nn; ++e) {
-            int32_t seg[2];
-            key[e] = classify(probe, node_position(node[e]), seg);
-          }
-        }
-        for (int e = 0; e < nn; ++e) {
-          if (key[e] == kOverflow) continue;
-          const int32_t xs = key[e] == 0 ? -1 : extra_field(node[e], key[e]);
-          if (key[e] != 0 && xs < 0) continue;  // the node has no field for that side
-          sf.node[sf.count] = node[e], sf.w[sf.count] = weight[e], sf.field[sf.count] = xs;
+        for (int e = 0; e < sk.count; ++e) {
+          if (sk.key[e] == kOverflow) continue;
+          const int32_t xs = sk.key[e] == 0 ? -1 : extra_field(sk.node[e], sk.key[e]);
+          if (sk.key[e] != 0 && xs < 0) continue;  // the node has no field for that side
+          sf.node[sf.count] = sk.node[e], sf.w[sf.count] = sk.w[e], sf.field[sf.count] = xs;
           ++sf.count;
         }
       }
     }
     side_valid_[ci] = 1;
+  }
+  // The nodes of point i's surface on `side` (0 above, 1 below), their weights and the keys of the
+  // lines from the surface's probe to them.
+  void surface_keys(const crack::ExplicitCrack<Dim>& c, std::size_t i, int side, SideKeys& sk) const {
+    const V nl = left_normal(c, i);
+    // The probes sit just off the crack line itself, not off the surfaces: a surface that has
+    // moved across the line (faces pressed together) must keep following its own side's field.
+    const V probe = side == 0 ? V(c.points[i] + kProbe * G_.h * nl) : V(c.points[i] - kProbe * G_.h * nl);
+    constexpr int kN = 1 << Dim;
+    int nn = 0;
+    linear_nodes(side == 0 ? c.above[i] : c.below[i], [&](int64_t n, double w) { sk.node[nn] = n, sk.w[nn++] = w; });
+    sk.count = nn;
+    for (int e = 0; e < kN; ++e) sk.key[e] = 0;
+    if constexpr (Dim == 3) {  // the eight lines at once (classify_block3: same keys)
+      const int64_t cell = nn == kN ? cell_of(probe) : -1;
+      if (cell >= 0) {
+        double nc[3][2];
+        for (int a = 0; a < 2; ++a)
+          nc[0][a] = node_position(sk.node[4 * a]).x(), nc[1][a] = node_position(sk.node[2 * a]).y(),
+          nc[2][a] = node_position(sk.node[a]).z();
+        int32_t seg[2];
+        this->template classify_block3<2>(
+            cell, probe, nc, [](int) { return true; }, [&](int) { return seg; },
+            [&](int j, uint32_t k) { sk.key[j] = k; });
+      }
+    } else {
+      for (int e = 0; e < nn; ++e) {
+        int32_t seg[2];
+        sk.key[e] = classify(probe, node_position(sk.node[e]), seg);
+      }
+    }
   }
 
   std::vector<std::vector<SideFields>> side_fields_;  // per crack, two per point (side_fields())
@@ -310,6 +339,8 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   std::vector<std::vector<V>> point_normal_;          // 3D, per crack and point: normal (find_side_fields)
   std::vector<std::vector<V>> vm_;                    // per crack: its points' centre-of-mass velocities
   std::vector<uint8_t> side_valid_;                   // per crack: side_fields_ are up to date
+  std::vector<std::vector<SideKeys>> side_keys_;      // 3D, per crack, two per point (find_side_fields)
+  std::vector<uint64_t> side_key_epoch_;              // 3D, per crack: the crack_epoch_ of side_keys_
 };
 
 }  // namespace cleave::crack_fields

@@ -9,8 +9,10 @@
 // particle in the stepper's strip pass, is written out for each dimension's axes.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -89,9 +91,15 @@ class SpatialIndex : public GridCells<Dim> {
   };
   using NearTest = std::conditional_t<Dim == 2, NearTest2, NearTest3>;
 
-  // The index for the cracks as they are now (Task 1 preamble).
+  // The index for the cracks as they are now (Task 1 preamble). 3D: built afresh only when a crack
+  // has changed since (a crack at rest, e.g. before the load reaches it, keeps its index).
   void prepare_index() {
     for (auto& c : cracks_) c.update_extent();
+    if constexpr (Dim == 3) {
+      note_crack_state();
+      if (index_epoch_ == crack_epoch_) return;
+      index_epoch_ = crack_epoch_;
+    }
     build_index();
   }
   NearTest near_test() const {
@@ -105,7 +113,7 @@ class SpatialIndex : public GridCells<Dim> {
   }
 
  protected:
-  using Base::cell_count, Base::cells_, Base::G_, Base::inv_h_;
+  using Base::cell_count, Base::cells_, Base::G_, Base::inv_h_, Base::parallel_points;
 
   explicit SpatialIndex(Model<Dim>& m) : Base(m.grid), cracks_(m.cracks) {
     cell_head_.assign(cell_count(), -1);
@@ -183,17 +191,15 @@ class SpatialIndex : public GridCells<Dim> {
 
   // 3D: per crack, every triangle's box grown by kReach cells is binned into the cells it overlaps
   // (a counting sort by cell: the list of a cell holds its triangles crack by crack, in triangle
-  // order, for any thread count); one entry per cell and crack.
+  // order, for any thread count); one entry per cell and crack. Then each entry's tight list.
+  // (The work arrays are members: allocated once, not paged in afresh every step.)
   void build_index3() {
     for (int64_t c : touched_) cell_head_[c] = -1, cell_fill_[c] = 0;
     touched_.clear();
     entries_.clear();
+    entry_cell_.clear();
     cell_fill_.resize(cell_head_.size(), 0);
     const double grow = kReach * G_.h;
-    struct Span {
-      int lo[3], hi[3];
-    };
-    std::vector<Span> spans;
     int blo[3] = {cells_[0], cells_[1], cells_[2]}, bhi[3] = {-1, -1, -1};
     auto span_of = [&](std::size_t ci, std::size_t t) {  // triangle t's box grown by kReach cells, in cells
       const V lo = tri_lo_[ci][t].array() - grow, hi = tri_hi_[ci][t].array() + grow;
@@ -222,10 +228,11 @@ class SpatialIndex : public GridCells<Dim> {
         tri_hi_[ci][t] = c.points[T[0]].cwiseMax(c.points[T[1]]).cwiseMax(c.points[T[2]]);
       }
     }
+    spans_.clear();
     for (std::size_t ci = 0; ci < cracks_.size(); ++ci)
       for (std::size_t t = 0; t < cracks_[ci].simplices.size(); ++t) {
         const Span sp = span_of(ci, t);
-        spans.push_back(sp);
+        spans_.push_back(sp);
         for (int d = 0; d < 3; ++d)
           if (sp.lo[d] <= sp.hi[d]) blo[d] = std::min(blo[d], sp.lo[d]), bhi[d] = std::max(bhi[d], sp.hi[d]);
         for_cells(sp, [&](int64_t cell) {
@@ -241,26 +248,27 @@ class SpatialIndex : public GridCells<Dim> {
       cell_fill_[touched_[k]] = static_cast<int32_t>(k);  // now: the cell's rank in touched_
     }
     tri_ids_.resize(total);
-    std::vector<int32_t> cursor(cell_offset_.begin(), cell_offset_.end() - 1);
-    std::vector<int32_t> tri_crack(total);
+    cursor_.assign(cell_offset_.begin(), cell_offset_.end() - 1);
+    tri_crack_.resize(total);
     std::size_t si = 0;
     for (std::size_t ci = 0; ci < cracks_.size(); ++ci)
       for (std::size_t t = 0; t < cracks_[ci].simplices.size(); ++t)
-        for_cells(spans[si++], [&](int64_t cell) {
-          const int32_t at = cursor[cell_fill_[cell]]++;
+        for_cells(spans_[si++], [&](int64_t cell) {
+          const int32_t at = cursor_[cell_fill_[cell]]++;
           tri_ids_[at] = static_cast<int32_t>(t);
-          tri_crack[at] = static_cast<int32_t>(ci);
+          tri_crack_[at] = static_cast<int32_t>(ci);
         });
     // Entries: one per cell and crack, chained per cell (the last crack first, as 2D chains them).
     for (std::size_t k = 0; k < touched_.size(); ++k) {
       const int64_t cell = touched_[k];
       for (int32_t a = cell_offset_[k]; a < cell_offset_[k + 1];) {
-        const int32_t ci = tri_crack[a];
+        const int32_t ci = tri_crack_[a];
         int32_t b = a;
         V lo = V::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-        for (; b < cell_offset_[k + 1] && tri_crack[b] == ci; ++b)
+        for (; b < cell_offset_[k + 1] && tri_crack_[b] == ci; ++b)
           lo = lo.cwiseMin(tri_lo_[ci][tri_ids_[b]]), hi = hi.cwiseMax(tri_hi_[ci][tri_ids_[b]]);
         entries_.push_back({ci, a, b - 1, cell_head_[cell], lo, hi});
+        entry_cell_.push_back(cell);
         cell_head_[cell] = static_cast<int32_t>(entries_.size() - 1);
         a = b;
       }
@@ -269,13 +277,118 @@ class SpatialIndex : public GridCells<Dim> {
     for (int d = 0; d < 3; ++d) box_lo_[d] = box_hi_[d] = 0.0;
     if (bhi[0] >= 0 && !touched_.empty())
       for (int d = 0; d < 3; ++d) box_lo_[d] = blo[d], box_hi_[d] = bhi[d] + 1.0;
+    build_tight_lists();
+  }
+
+  // 3D, per entry: its tight list, the triangles of its range whose boxes meet the closed box S of
+  // its cell grown by kTightGrow cells (stored with the entry: the test that a particle's box lies in
+  // S must see the very doubles that chose the list). In parallel over entries, each list at the
+  // offset of a prefix sum of the counts: the same lists for any thread count.
+  void build_tight_lists() {
+    const std::size_t ne = entries_.size();
+    tight_.resize(ne);
+    const int64_t nyz = static_cast<int64_t>(cells_[1]) * cells_[2];
+    auto meets = [&](const Tight& T, int32_t ci, int32_t t) {
+      return (tri_hi_[ci][t].array() >= T.lo.array()).all() && (tri_lo_[ci][t].array() <= T.hi.array()).all();
+    };
+#pragma omp parallel for schedule(static) if (parallel_points(ne))
+    for (std::size_t e = 0; e < ne; ++e) {
+      const Entry& en = entries_[e];
+      Tight& T = tight_[e];
+      const int64_t cell = entry_cell_[e];
+      const int64_t ijk[3] = {cell / nyz, (cell / cells_[2]) % cells_[1], cell % cells_[2]};
+      for (int d = 0; d < 3; ++d) {
+        T.lo[d] = G_.origin[d] + G_.h * (static_cast<double>(ijk[d]) - kTightGrow);
+        T.hi[d] = G_.origin[d] + G_.h * (static_cast<double>(ijk[d]) + 1.0 + kTightGrow);
+      }
+      int32_t n = 0;
+      for (int32_t a = en.seg_lo; a <= en.seg_hi; ++a) n += meets(T, en.crack, tri_ids_[a]);
+      T.count = n;
+    }
+    tight_begin_.resize(ne + 1);
+    tight_begin_[0] = 0;
+    for (std::size_t e = 0; e < ne; ++e) tight_begin_[e + 1] = tight_begin_[e] + tight_[e].count;
+    tight_ids_.resize(static_cast<std::size_t>(tight_begin_[ne]));
+#pragma omp parallel for schedule(static) if (parallel_points(ne))
+    for (std::size_t e = 0; e < ne; ++e) {
+      const Entry& en = entries_[e];
+      int32_t at = tight_begin_[e];
+      for (int32_t a = en.seg_lo; a <= en.seg_hi; ++a)
+        if (meets(tight_[e], en.crack, tri_ids_[a])) tight_ids_[at++] = tri_ids_[a];
+    }
+  }
+
+  // 3D: the first index entry of a cell whose tight lists serve the closed box [lo, hi] (a particle
+  // and its stencil nodes), or -1 (then the full lists of `cell`, the particle's, serve). The cell is
+  // the one holding the box's centre; it serves when its box S holds [lo, hi] and it is `cell` or a
+  // neighbour of it. Exact: every triangle that meets [lo, hi] meets S, so it is in the tight list,
+  // and it lies within 1 + kTightGrow cells of `cell`, so it is in `cell`'s full list (kReach);
+  // the lists keep triangle order. The box's triangles are thus the same from either list.
+  int32_t tight_head(int64_t cell, const V& lo, const V& hi) const {
+    const int64_t nyz = static_cast<int64_t>(cells_[1]) * cells_[2];
+    const int64_t own[3] = {cell / nyz, (cell / cells_[2]) % cells_[1], cell % cells_[2]};
+    int64_t c = 0;
+    for (int d = 0; d < 3; ++d) {
+      const double f = (0.5 * (lo[d] + hi[d]) - G_.origin[d]) * inv_h_;
+      const int64_t i = std::clamp<int64_t>(static_cast<int64_t>(std::floor(f)), 0, cells_[d] - 1);
+      if (i < own[d] - 1 || i > own[d] + 1) return -1;
+      c = c * cells_[d] + i;
+    }
+    const int32_t e = cell_head_[c];
+    if (e < 0) return -1;
+    const Tight& T = tight_[static_cast<std::size_t>(e)];
+    return (lo.array() >= T.lo.array()).all() && (hi.array() <= T.hi.array()).all() ? e : -1;
+  }
+
+  // 3D: bumps crack_epoch_ when a crack's points, triangles or faces differ, bit for bit, from their
+  // copies of the last call (then taken afresh). Whatever is a function of the crack geometry alone
+  // (the index, the side-field keys, a particle's keys) is kept while the epoch stays.
+  void note_crack_state() {
+    bool same = state_.size() == cracks_.size();
+    state_.resize(cracks_.size());
+    auto keep = [](auto& kept, const auto& now) {  // true when kept equals now; kept = now
+      if (kept.size() == now.size() && std::memcmp(kept.data(), now.data(), now.size() * sizeof(now[0])) == 0)
+        return true;
+      kept = now;
+      return false;
+    };
+    for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
+      const auto& c = cracks_[ci];
+      CrackState& st = state_[ci];
+      const bool p = keep(st.points, c.points), a = keep(st.above, c.above), b = keep(st.below, c.below),
+                 t = keep(st.simplices, c.simplices);
+      same = same && p && a && b && t;
+    }
+    if (!same) ++crack_epoch_;
   }
 
   std::vector<crack::ExplicitCrack<Dim>>& cracks_;
+  struct CrackState {  // a crack's geometry at the last note_crack_state
+    std::vector<V> points, above, below;
+    std::vector<std::array<int32_t, Dim>> simplices;
+  };
+  std::vector<CrackState> state_;
+  uint64_t crack_epoch_ = 0, index_epoch_ = ~uint64_t{0};
   double near_reach_;  // a particle is near when within this distance of an index entry's box
   std::vector<int32_t> cell_head_;
   double box_lo_[Dim] = {}, box_hi_[Dim] = {};  // cells [lo, hi) holding all index entries
   std::vector<int32_t> tri_ids_, cell_offset_, cell_fill_;  // 3D (build_index3)
+  struct Span {  // 3D: a triangle's cells (build_index3)
+    int lo[3], hi[3];
+  };
+  std::vector<Span> spans_;
+  std::vector<int32_t> cursor_, tri_crack_;
+  // 3D tight lists (build_tight_lists): S is a cell grown by kTightGrow cells, so that the box of a
+  // particle and its stencil (one cell linear, two uGIMP) fits, as does a crack-surface probe's a
+  // hair off its cell.
+  static constexpr double kTightGrow = (SF::K - 2) + 1.0 / 16;
+  struct Tight {
+    V lo, hi;  // S
+    int32_t count;
+  };
+  std::vector<Tight> tight_;  // per entry
+  std::vector<int32_t> tight_begin_, tight_ids_;  // entry e's tight list: tight_ids_[tight_begin_[e] ..]
+  std::vector<int64_t> entry_cell_;  // per entry: its cell
   std::vector<std::vector<V>> tri_lo_, tri_hi_;  // 3D, per crack and triangle: its bounding box
   std::vector<int64_t> touched_;
   std::vector<Entry> entries_;

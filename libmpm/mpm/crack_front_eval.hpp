@@ -1,0 +1,543 @@
+// The dynamic J vector and K_I, K_II, K_III at the nodes of the fronts of a 3D model (seed 000 §3),
+// the 3D counterpart of crack_tip_eval.hpp, with the same steps at each front node:
+// eq. 36: the particles around the node extrapolate W, K, stress, displacement gradient and
+// displacement to the nodes, separately for each velocity field (a particle-node pair's field is the
+// crack-crossing key of its connecting line); eq. 37: a contour point takes each node's value from
+// the field a particle there would use; eqs. 38-39: midpoint rule over the circle in the plane normal
+// to the front, with all three traction and displacement-gradient components (dropping the
+// out-of-plane one loses K_III^2 / 2 mu: validation.md §4); eq. 33 adds the volume term over the
+// particles inside the contour, per unit length of front (a slab of one cell along the front).
+//
+// Only what the contours need is extrapolated: the nodes of the cells of the contour points, of the
+// opening probes and of the front node, from the particles whose stencils reach them (a binning of
+// the particles by cell, once per evaluation). Front nodes are independent: they run in parallel,
+// each one's sums in a fixed particle order, so the result does not depend on the thread count.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "libmpm/core/parallel.hpp"
+#include "libmpm/crack/crossing3d.hpp"
+#include "libmpm/crack/front_parameters.hpp"
+#include "libmpm/mpm/crack_tip_eval.hpp"  // kCodCells
+#include "libmpm/mpm/model.hpp"
+#include "libmpm/mpm/stencil.hpp"
+
+namespace cleave {
+
+namespace detail {
+
+// Mass-weighted nodal sums of one velocity field at one node (eq. 36), 3D.
+struct FrontFieldSums {
+  uint32_t key = 0;
+  double m = 0.0, energy = 0.0, rho = 0.0, rho_vv = 0.0;
+  Vec<3> rho_v = Vec<3>::Zero(), u = Vec<3>::Zero(), v = Vec<3>::Zero();
+  Mat<3> stress = Mat<3>::Zero(), grad_u = Mat<3>::Zero();
+};
+
+// Particles binned by grid cell (counting sort): the particles of a cell in index order.
+struct CellBins {
+  std::array<int64_t, 3> cells{};
+  std::vector<int64_t> begin;  // per cell + 1
+  std::vector<int32_t> particle;
+
+  int64_t cell_of(const GridGeometry<3>& G, const Vec<3>& x) const {
+    int64_t c = 0;
+    for (int d = 0; d < 3; ++d) {
+      const int64_t i = static_cast<int64_t>(std::floor((x[d] - G.origin[d]) / G.h));
+      if (i < 0 || i >= cells[d]) return -1;
+      c = c * cells[d] + i;
+    }
+    return c;
+  }
+  void build(const GridGeometry<3>& G, const std::vector<Vec<3>>& x) {
+    for (int d = 0; d < 3; ++d) cells[d] = std::max(1, G.nodes[d] - 1);
+    const int64_t n = cells[0] * cells[1] * cells[2];
+    begin.assign(n + 1, 0);
+    std::vector<int64_t> cell(x.size());
+    for (std::size_t p = 0; p < x.size(); ++p) {
+      cell[p] = cell_of(G, x[p]);
+      if (cell[p] >= 0) ++begin[cell[p] + 1];
+    }
+    for (int64_t c = 0; c < n; ++c) begin[c + 1] += begin[c];
+    particle.resize(begin[n]);
+    std::vector<int64_t> next(begin.begin(), begin.end() - 1);
+    for (std::size_t p = 0; p < x.size(); ++p)
+      if (cell[p] >= 0) particle[next[cell[p]]++] = static_cast<int32_t>(p);
+  }
+};
+
+// A particle's displacement gradient: its small strain plus its integrated rotation w (the skew
+// part W_ij = (u_i,j - u_j,i) / 2 as the vector (W_21, W_02, W_10)).
+inline Mat<3> displacement_gradient(const Sym<3>& e, const Vec<3>& w) {
+  Mat<3> g;
+  g << e[0], e[3] - w.z(), e[5] + w.y(),  //
+      e[3] + w.z(), e[1], e[4] - w.x(),   //
+      e[5] - w.y(), e[4] + w.x(), e[2];
+  return g;
+}
+inline Mat<3> full_tensor(const Sym<3>& s) {
+  Mat<3> t;
+  t << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
+  return t;
+}
+
+}  // namespace detail
+
+// accel(p): the acceleration of particle p in the last step (from the grid, with its own fields).
+template <class SF, class Accel>
+std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const crack::TipSettings& ts, Accel&& accel) {
+  using V = Vec<3>;
+  using St = Stencil<3, SF>;
+  using Sums = detail::FrontFieldSums;
+  const auto& P = m.particles;
+  const auto& G = m.grid;
+  const double h = G.h, inv_h = 1.0 / h;
+  const auto stride = G.strides();
+  const auto node_ijk = [&](int64_t n) {
+    std::array<int64_t, 3> ijk;
+    for (int d = 0; d < 3; ++d) ijk[d] = n / static_cast<int64_t>(stride[d]), n %= static_cast<int64_t>(stride[d]);
+    return ijk;
+  };
+  const auto node_pos = [&](int64_t n) {
+    const auto ijk = node_ijk(n);
+    return V(G.origin.x() + h * ijk[0], G.origin.y() + h * ijk[1], G.origin.z() + h * ijk[2]);
+  };
+  const bool circle = ts.contour == crack::TipSettings::Contour::Circle;
+  const double contour_extent = ts.radius * h * (circle ? 1.0 : std::sqrt(2.0));
+  const double cod_distance = std::max(ts.radius, kCodCells) * h;
+  // Everything a front node's evaluation touches lies within this distance of it: the contour, its
+  // cells' nodes and the particles reaching them (1 + 1.5 cells), with a margin.
+  const double reach = std::max(contour_extent, cod_distance) + 4.5 * h;
+  const bool rotations = !P.rotation3.empty();
+
+  detail::CellBins bins;
+  bins.build(G, P.x);
+
+  struct Job {
+    int crack, front, node;
+  };
+  std::vector<Job> jobs;
+  for (const auto& c : m.cracks)
+    for (std::size_t f = 0; f < c.fronts.size(); ++f)
+      if (c.tip[f])
+        for (std::size_t k = 0; k < c.fronts[f].nodes.size(); ++k)
+          jobs.push_back({c.id, static_cast<int>(f), static_cast<int>(k)});
+  std::vector<crack::FrontRecord> out(jobs.size());
+  std::vector<uint8_t> done(jobs.size(), 0);
+  std::vector<std::string> failure(jobs.size());
+
+#pragma omp parallel for schedule(dynamic, 1) if (jobs.size() > 1)
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    try {
+    const Job job = jobs[j];
+    const auto& c = m.cracks[job.crack];
+    const crack::FrontFrame f = crack::front_frame(c, job.front, job.node);
+    crack::FrontRecord& rec = out[j];
+    rec.crack = job.crack, rec.front = job.front, rec.node = job.node;
+    rec.x = f.x;
+    rec.s = crack::front_arc_lengths(c, job.front)[job.node];
+    if (!c.fronts[job.front].flags.empty()) rec.flag = c.fronts[job.front].flags[job.node];
+
+    // The triangles of every crack within reach (their boxes meet the box about the node): every
+    // particle-node line used below lies in that box, so the crossing tests on these are exact.
+    struct Local {
+      std::vector<int32_t> ids;
+      std::vector<V> lo, hi;
+    };
+    std::vector<Local> local(m.cracks.size());
+    for (const auto& o : m.cracks) {
+      Local& L = local[o.id];
+      for (std::size_t t = 0; t < o.simplices.size(); ++t) {
+        const auto& T = o.simplices[t];
+        const V lo = o.points[T[0]].cwiseMin(o.points[T[1]]).cwiseMin(o.points[T[2]]);
+        const V hi = o.points[T[0]].cwiseMax(o.points[T[1]]).cwiseMax(o.points[T[2]]);
+        if (((hi - f.x).array() >= -reach).all() && ((lo - f.x).array() <= reach).all()) {
+          L.ids.push_back(static_cast<int32_t>(t));
+          L.lo.push_back(lo), L.hi.push_back(hi);
+        }
+      }
+    }
+    // The local triangles narrowed to those whose boxes meet [lo, hi] (per crack), and the field key
+    // of a line x -> xn inside that box (crack_fields' key: one code per crossed crack). A particle
+    // narrows once for all its lines (its stencil lies within two cells of it).
+    // (Narrowed lists hold positions k in the crack's Local list.)
+    using Narrowed = std::vector<std::vector<int32_t>>;
+    const auto narrow = [&](const V& lo, const V& hi, Narrowed& out) {
+      out.resize(m.cracks.size());
+      for (std::size_t o = 0; o < m.cracks.size(); ++o) {
+        const Local& L = local[o];
+        out[o].clear();
+        for (std::size_t k = 0; k < L.ids.size(); ++k)
+          if ((L.hi[k].array() >= lo.array()).all() && (L.lo[k].array() <= hi.array()).all())
+            out[o].push_back(static_cast<int32_t>(k));
+      }
+    };
+    // The same from a narrowed list.
+    const auto narrow_from = [&](const Narrowed& from, const V& lo, const V& hi, Narrowed& out) {
+      out.resize(m.cracks.size());
+      for (std::size_t o = 0; o < m.cracks.size(); ++o) {
+        const Local& L = local[o];
+        out[o].clear();
+        for (const int32_t k : from[o])
+          if ((L.hi[k].array() >= lo.array()).all() && (L.lo[k].array() <= hi.array()).all()) out[o].push_back(k);
+      }
+    };
+    std::vector<int32_t> line_ids;
+    const auto key_in = [&](const Narrowed& list, const V& x, const V& xn) {
+      crack::FieldKeyBuilder b;
+      const V lo = x.cwiseMin(xn), hi = x.cwiseMax(xn);
+      for (const auto& o : m.cracks) {
+        const Local& L = local[o.id];
+        line_ids.clear();
+        for (const int32_t k : list[o.id])
+          if ((L.hi[k].array() >= lo.array()).all() && (L.lo[k].array() <= hi.array()).all()) line_ids.push_back(L.ids[k]);
+        if (line_ids.empty()) continue;
+        const crack::Side side = crack::triangle_list_crossing(o.points.data(), o.simplices.data(), line_ids.data(),
+                                                               line_ids.size(), x, xn);
+        if (side != crack::Side::None && !b.add(o.id, side)) return crack::kFieldKeyOverflow;
+      }
+      return b.key();
+    };
+    Narrowed scratch;
+    const auto key_of = [&](const V& x, const V& xn) {
+      narrow(x.cwiseMin(xn), x.cwiseMax(xn), scratch);
+      return key_in(scratch, x, xn);
+    };
+
+    // The crack's surface point nearest to x (among the node's local triangles) and the normal of
+    // its triangle.
+    const auto nearest_on_crack = [&](const V& x, V& q, V& normal) {
+      double best = INFINITY;
+      for (const int32_t t : local[c.id].ids) {
+        const auto& T = c.simplices[t];
+        const V a = c.points[T[0]], b = c.points[T[1]], cc = c.points[T[2]];
+        V nrm = (b - a).cross(cc - a);
+        if (!(nrm.squaredNorm() > 0.0)) continue;
+        nrm.normalize();
+        // Closest point of the triangle: the projection if it falls inside, else the nearest edge point.
+        V p = x - (x - a).dot(nrm) * nrm;
+        const auto inside_edge = [&](const V& e0, const V& e1) { return (e1 - e0).cross(p - e0).dot(nrm) >= 0.0; };
+        if (!(inside_edge(a, b) && inside_edge(b, cc) && inside_edge(cc, a))) {
+          V bestp = a;
+          double bd = INFINITY;
+          for (const auto& [e0, e1] : {std::pair<V, V>{a, b}, {b, cc}, {cc, a}}) {
+            const double s = std::clamp((x - e0).dot(e1 - e0) / (e1 - e0).squaredNorm(), 0.0, 1.0);
+            const V y = e0 + s * (e1 - e0);
+            if ((y - x).squaredNorm() < bd) bd = (y - x).squaredNorm(), bestp = y;
+          }
+          p = bestp;
+        }
+        const double d = (p - x).squaredNorm();
+        if (d < best) best = d, q = p, normal = nrm;
+      }
+      return best < INFINITY;
+    };
+
+    // The contour starts where the circle meets the crack (seed 000 step 1).
+    double theta0 = -M_PI;
+    {
+      V q, nrm;
+      if (nearest_on_crack(f.x - ts.radius * h * f.e1, q, nrm)) {
+        const V d = q - f.x;
+        if (d.norm() > 0.1 * h) theta0 = std::atan2(d.dot(f.e2), d.dot(f.e1));
+      }
+    }
+    const auto contour = crack::front_contour_points(f, ts, h, theta0);
+    // Opening probes: each face's field just off the crack, cod_distance behind the node.
+    V cod_point = f.x - cod_distance * f.e1, cod_normal = f.e2;
+    const bool have_cod_point = nearest_on_crack(cod_point, cod_point, cod_normal);
+    const double probe = 1e-3 * h;
+    const V up = cod_point + probe * cod_normal, down = cod_point - probe * cod_normal;
+
+    // The nodes whose sums the contour needs: those of the cells of its points, of the probes and
+    // of the front node (sorted, unique).
+    std::vector<int64_t> need;
+    const auto add_cell_nodes = [&](const V& x) {
+      std::array<int64_t, 3> i;
+      for (int d = 0; d < 3; ++d) {
+        i[d] = static_cast<int64_t>(std::floor((x[d] - G.origin[d]) * inv_h));
+        if (i[d] < 0 || i[d] + 1 >= G.nodes[d]) return;
+      }
+      for (int k = 0; k < 8; ++k)
+        need.push_back((i[0] + (k & 1)) * int64_t(stride[0]) + (i[1] + ((k >> 1) & 1)) * int64_t(stride[1]) +
+                       (i[2] + ((k >> 2) & 1)));
+    };
+    for (const auto& cp : contour) add_cell_nodes(cp.x);
+    add_cell_nodes(up), add_cell_nodes(down), add_cell_nodes(f.x);
+
+    // The particles inside the contour (eq. 33's volume): within its plane region and a slab of one
+    // cell along the front, each weighted by the part of its extent along e3 inside the slab.
+    std::vector<std::pair<int32_t, double>> inside;
+    if (ts.volume_term) {
+      const int r = static_cast<int>(std::ceil(contour_extent * inv_h)) + 1;
+      const int64_t c0 = bins.cell_of(G, f.x);
+      if (c0 >= 0) {
+        const int64_t ci = c0 / (bins.cells[1] * bins.cells[2]), cj = (c0 / bins.cells[2]) % bins.cells[1],
+                      ck = c0 % bins.cells[2];
+        for (int64_t a = std::max<int64_t>(0, ci - r); a <= std::min(bins.cells[0] - 1, ci + r); ++a)
+          for (int64_t b = std::max<int64_t>(0, cj - r); b <= std::min(bins.cells[1] - 1, cj + r); ++b)
+            for (int64_t e = std::max<int64_t>(0, ck - r); e <= std::min(bins.cells[2] - 1, ck + r); ++e) {
+              const int64_t cell = (a * bins.cells[1] + b) * bins.cells[2] + e;
+              for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
+                const int32_t p = bins.particle[q];
+                if (!crack::inside_front_contour(f, ts, h, P.x[p])) continue;
+                const double l = std::cbrt(P.volume0[p]), s3 = (P.x[p] - f.x).dot(f.e3);
+                const double overlap = std::min(s3 + 0.5 * l, 0.5 * h) - std::max(s3 - 0.5 * l, -0.5 * h);
+                if (overlap <= 0.0) continue;
+                inside.push_back({p, overlap / (l * h)});
+                St st;
+                st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
+                st.for_each_weight([&](int64_t n, double) { need.push_back(n); });
+              }
+            }
+      }
+    }
+    std::sort(need.begin(), need.end());
+    need.erase(std::unique(need.begin(), need.end()), need.end());
+    // need_index(n): n's position in `need`, or -1, through a dense table over the box of nodes
+    // within `reach` of the front node (every node this evaluation touches lies in it).
+    const int box_r = static_cast<int>(std::ceil(reach * inv_h)) + 2, box_n = 2 * box_r + 1;
+    std::array<int64_t, 3> box0;
+    for (int d = 0; d < 3; ++d) box0[d] = static_cast<int64_t>(std::floor((f.x[d] - G.origin[d]) * inv_h)) - box_r;
+    std::vector<int32_t> slot(static_cast<std::size_t>(box_n) * box_n * box_n, -1);
+    const auto box_of = [&](int64_t n) -> int64_t {
+      const auto ijk = node_ijk(n);
+      int64_t b = 0;
+      for (int d = 0; d < 3; ++d) {
+        const int64_t i = ijk[d] - box0[d];
+        if (i < 0 || i >= box_n) return -1;
+        b = b * box_n + i;
+      }
+      return b;
+    };
+    for (std::size_t i = 0; i < need.size(); ++i) {
+      const int64_t b = box_of(need[i]);
+      if (b < 0) throw std::logic_error("crack-front evaluation: a needed node lies outside its box");
+      slot[b] = static_cast<int32_t>(i);
+    }
+    const auto need_index = [&](int64_t n) {
+      const int64_t b = box_of(n);
+      return b < 0 ? -1 : slot[b];
+    };
+
+    // The particles whose stencils can reach a needed node, in cell order, each once: those in the
+    // cells about it (linear: the 8 cells touching the node; uGIMP, half-widths up to half a cell:
+    // within 1.5 cells, two cells below to one above).
+    constexpr int kLo = St::K == 2 ? -1 : -2, kHi = St::K == 2 ? 0 : 1;
+    std::vector<int64_t> cells;
+    for (const int64_t n : need) {
+      const auto ijk = node_ijk(n);
+      for (int a = kLo; a <= kHi; ++a)
+        for (int b = kLo; b <= kHi; ++b)
+          for (int e = kLo; e <= kHi; ++e) {
+            const int64_t i = ijk[0] + a, jj = ijk[1] + b, k = ijk[2] + e;
+            if (i < 0 || jj < 0 || k < 0 || i >= bins.cells[0] || jj >= bins.cells[1] || k >= bins.cells[2]) continue;
+            cells.push_back((i * bins.cells[1] + jj) * bins.cells[2] + k);
+          }
+    }
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+
+    // The rigid motion of the material about the node (as in 2D): mean rotation and least-squares
+    // spin of the particles within a cell and a half of the contour, in the slab of the contour.
+    V theta = V::Zero(), omega = V::Zero();
+    {
+      const double fit = contour_extent + 1.5 * h;
+      double msum = 0.0;
+      V mx = V::Zero(), mv = V::Zero(), mth = V::Zero();
+      const auto in_fit = [&](int32_t p) {
+        const V d = P.x[p] - f.x;
+        return std::fabs(d.dot(f.e3)) <= 1.5 * h && (d - d.dot(f.e3) * f.e3).norm() <= fit;
+      };
+      for (const int64_t cell : cells)
+        for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
+          const int32_t p = bins.particle[q];
+          if (!in_fit(p)) continue;
+          const double mp = P.mass[p];
+          msum += mp, mx += mp * P.x[p], mv += mp * P.v[p];
+          if (rotations) mth += mp * P.rotation3[p];
+        }
+      if (msum > 0.0) {
+        theta = mth / msum, mx /= msum, mv /= msum;
+        Mat<3> inertia = Mat<3>::Zero();
+        V moment = V::Zero();
+        for (const int64_t cell : cells)
+          for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
+            const int32_t p = bins.particle[q];
+            if (!in_fit(p)) continue;
+            const V r = P.x[p] - mx;
+            inertia += P.mass[p] * (r.squaredNorm() * Mat<3>::Identity() - r * r.transpose());
+            moment += P.mass[p] * r.cross(P.v[p] - mv);
+          }
+        if (inertia.determinant() > 0.0) omega = inertia.ldlt().solve(moment);
+      }
+    }
+    const auto v_rel = [&](int32_t p) { V v = P.v[p] - omega.cross(P.x[p] - f.x); return v; };
+    const auto grad_u = [&](int32_t p) {
+      return detail::displacement_gradient(P.strain[p], rotations ? V(P.rotation3[p] - theta) : V(-theta));
+    };
+
+    // Eq. 36 at the needed nodes: per node, its fields' sums (at most a few).
+    std::vector<std::vector<Sums>> sums(need.size());
+    // Triangles narrowed per cell (to the cell grown by a cell, which holds every stencil of its
+    // particles), then per particle (to its stencil's box, which holds its lines).
+    Narrowed near_cell, near_p;
+    int32_t nearest = -1;
+    double nearest_d = INFINITY;
+    for (const int64_t cell : cells) {
+      if (bins.begin[cell] == bins.begin[cell + 1]) continue;
+      const int64_t ci = cell / (bins.cells[1] * bins.cells[2]), cj = (cell / bins.cells[2]) % bins.cells[1],
+                    ck = cell % bins.cells[2];
+      const V corner = G.origin + h * V(double(ci), double(cj), double(ck));
+      narrow(corner - V::Constant(h), corner + V::Constant(2.0 * h), near_cell);
+      for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
+        const int32_t p = bins.particle[q];
+        St st;
+        st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
+        bool any = false;
+        st.for_each_weight([&](int64_t n, double w) { any = any || (w != 0.0 && need_index(n) >= 0); });
+        if (!any) continue;
+        const double d = (P.x[p] - f.x).norm();
+        if (d < nearest_d) nearest_d = d, nearest = p;
+        const double mp = P.mass[p];
+        const double energy = m.materials[P.material[p]]->strain_energy_density(P.stress[p], P.strain[p]);
+        const Mat<3> s = detail::full_tensor(P.stress[p]), gu = grad_u(p);
+        const V vp = v_rel(p);
+        const double rho = mp / P.volume0[p];
+        {
+          const V first = node_pos(st.base), last = first + (St::K - 1) * V::Constant(h);
+          narrow_from(near_cell, P.x[p].cwiseMin(first), P.x[p].cwiseMax(last), near_p);
+        }
+        st.for_each_weight([&](int64_t n, double w) {
+          if (w == 0.0) return;
+          const int i = need_index(n);
+          if (i < 0) return;
+          const uint32_t key = key_in(near_p, P.x[p], node_pos(n));
+          if (key == crack::kFieldKeyOverflow) return;
+          auto& list = sums[i];
+          auto it = std::find_if(list.begin(), list.end(), [&](const Sums& x) { return x.key == key; });
+          if (it == list.end()) it = list.insert(list.end(), Sums{}), it->key = key;
+          const double mw = mp * w;
+          it->m += mw, it->energy += mw * energy, it->stress += mw * s, it->grad_u += mw * gu;
+          it->u += mw * P.u[p], it->v += mw * vp;
+          it->rho += mw * rho, it->rho_vv += mw * rho * vp.squaredNorm(), it->rho_v += mw * rho * vp;
+        });
+      }
+    }
+    if (nearest < 0) continue;  // no material at this front node (done stays 0: no row)
+    const auto field = [&](int64_t n, uint32_t key) -> const Sums* {
+      const int i = need_index(n);
+      if (i < 0) return nullptr;
+      for (const Sums& s : sums[i])
+        if (s.key == key && s.m > 0.0) return &s;
+      return nullptr;
+    };
+    const auto for_cell_nodes = [&](const V& x, auto&& g) {
+      std::array<int64_t, 3> i;
+      double r[3];
+      for (int d = 0; d < 3; ++d) {
+        const double fx = (x[d] - G.origin[d]) * inv_h;
+        i[d] = static_cast<int64_t>(std::floor(fx));
+        if (i[d] < 0 || i[d] + 1 >= G.nodes[d]) return false;
+        r[d] = fx - i[d];
+      }
+      for (int k = 0; k < 8; ++k) {
+        const int a = k & 1, b = (k >> 1) & 1, e = (k >> 2) & 1;
+        const double w = (a ? r[0] : 1 - r[0]) * (b ? r[1] : 1 - r[1]) * (e ? r[2] : 1 - r[2]);
+        g((i[0] + a) * int64_t(stride[0]) + (i[1] + b) * int64_t(stride[1]) + (i[2] + e), w);
+      }
+      return true;
+    };
+
+    // The front node's velocity: the centre-of-mass velocity of all fields at its cell's nodes.
+    V v_tip = V::Zero();
+    {
+      double wsum = 0.0;
+      for_cell_nodes(f.x, [&](int64_t n, double w) {
+        const int i = need_index(n);
+        if (i < 0 || w == 0.0) return;
+        double mn = 0.0;
+        V pn = V::Zero();
+        for (const Sums& s : sums[i]) mn += s.m, pn += s.v;
+        if (!(mn > 0.0)) return;
+        v_tip += w * pn / mn, wsum += w;
+      });
+      if (wsum > 0.0) v_tip /= wsum;
+    }
+
+    // Eq. 37 at x: energy (W + K relative to the front node), stress, gradient, displacement.
+    struct Point {
+      double energy = 0.0;
+      Mat<3> stress = Mat<3>::Zero(), grad_u = Mat<3>::Zero();
+      V u = V::Zero();
+    };
+    const auto interpolate = [&](const V& x, Point& q) {
+      q = Point{};
+      double wsum = 0.0;
+      const bool in_grid = for_cell_nodes(x, [&](int64_t n, double w) {
+        if (w == 0.0) return;
+        const Sums* s = field(n, key_of(x, node_pos(n)));
+        if (!s) return;
+        const double k = w / s->m;
+        const double kinetic = 0.5 * (s->rho_vv - 2.0 * v_tip.dot(s->rho_v) + s->rho * v_tip.squaredNorm());
+        q.energy += k * (s->energy + kinetic), q.stress += k * s->stress, q.grad_u += k * s->grad_u, q.u += k * s->u;
+        wsum += w;
+      });
+      if (!in_grid || !(wsum > 0.0)) return false;
+      q.energy /= wsum, q.stress /= wsum, q.grad_u /= wsum, q.u /= wsum;
+      return true;
+    };
+
+    // Eqs. 38-39 in global axes: J = sum [(W + K) n - (grad u)^T (sigma n)] dGamma.
+    V J = V::Zero();
+    for (const auto& cp : contour) {
+      Point q;
+      if (!interpolate(cp.x, q)) {
+        rec.flag |= crack::kFlagContourOutside;
+        continue;
+      }
+      J += cp.length * (q.energy * cp.n - q.grad_u.transpose() * (q.stress * cp.n));
+    }
+    // Eq. 33's volume term: sum over the slab's particles of (m_p / slab) [(grad u)^T a - (grad v)^T v].
+    for (const auto& [p, weight] : inside) {
+      St st;
+      st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
+      Mat<3> gv = Mat<3>::Zero();
+      st.for_each([&](int64_t n, double, const V& g) {
+        const Sums* s = field(n, key_of(P.x[p], node_pos(n)));
+        if (s) gv += (s->v / s->m) * g.transpose();
+      });
+      J += P.mass[p] * weight * (grad_u(p).transpose() * accel(p) - gv.transpose() * (v_rel(p) - v_tip));
+    }
+    rec.J1 = J.dot(f.e1);
+    rec.J2 = J.dot(f.e2);
+
+    Point a, b;
+    if (have_cod_point && interpolate(up, a) && interpolate(down, b)) {
+      const V d = a.u - b.u;
+      rec.cod_I = d.dot(f.e2), rec.cod_II = d.dot(f.e1), rec.cod_III = d.dot(f.e3);
+    } else {
+      rec.flag |= crack::kFlagNoOpening;
+    }
+    double mu = 0.0, nu = 0.0;
+    if (!m.materials[P.material[nearest]]->isotropic_elastic(mu, nu))
+      throw std::runtime_error("crack '" + c.name + "': K from J needs an isotropic elastic material at its fronts");
+    const auto k = crack::stress_intensity3(rec.J1, rec.cod_I, rec.cod_II, rec.cod_III, mu, nu);
+    rec.KI = k.KI, rec.KII = k.KII, rec.KIII = k.KIII;
+    done[j] = 1;
+    } catch (const std::exception& e) {
+      failure[j] = e.what();
+    }
+  }
+  for (const auto& e : failure)
+    if (!e.empty()) throw std::runtime_error(e);
+  std::vector<crack::FrontRecord> kept;
+  for (std::size_t j = 0; j < jobs.size(); ++j)
+    if (done[j]) kept.push_back(out[j]);
+  return kept;
+}
+
+}  // namespace cleave

@@ -1,0 +1,222 @@
+// Crack-front parameters in 3D (issue: dynamic J vector and K_I, K_II, K_III along every crack front;
+// seed 000 §3). Geometry and closed forms first, then the solver against validation.md §4; the
+// figures and the finer runs: docs/validation.md, "Crack-front parameters (3D)".
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "libmpm/core/error.hpp"
+#include "libmpm/crack/front_parameters.hpp"
+#include "libmpm/method/run_loop.hpp"
+#include "libmpm/mpm/mpm_method.hpp"
+#include "libmpm/mpm/mpm_scene.hpp"
+#include "support.hpp"
+
+namespace cleave {
+namespace {
+
+using nlohmann::json;
+constexpr double kPi = 3.14159265358979323846;
+
+crack::FrontFrame frame_at(const Vec<3>& x, const Vec<3>& e1, const Vec<3>& e2) {
+  return {x, e1, e2, e1.cross(e2)};
+}
+
+// --- geometry and closed forms ---------------------------------------------------------------
+
+TEST(FrontContour, IsACircleInThePlaneNormalToTheFrontWithOutwardNormalsStartingOnTheCrack) {
+  const crack::FrontFrame f = frame_at({1, 2, 3}, Vec<3>(0, 1, 0), Vec<3>(0, 0, 1));  // front along -x... e3 = x
+  crack::TipSettings s;  // 2-cell circle, 16 points
+  const auto pts = crack::front_contour_points(f, s, 0.5);
+  ASSERT_EQ(pts.size(), 16u);
+  double length = 0;
+  for (const auto& p : pts) {
+    const Vec<3> d = p.x - f.x;
+    EXPECT_NEAR(d.dot(f.e3), 0.0, 1e-15);  // in the plane normal to the front
+    EXPECT_NEAR(d.norm(), 1.0, 1e-12);     // radius 2 cells of 0.5
+    EXPECT_NEAR(p.n.dot(d.normalized()), 1.0, 1e-12);
+    length += p.length;
+  }
+  EXPECT_NEAR(length, 2 * kPi * 1.0, 1e-12);
+  // The first point is half a step past the crack (behind the front, angle -pi), counter-clockwise
+  // about e3: below the crack plane.
+  const Vec<3> d0 = pts[0].x - f.x;
+  EXPECT_LT(d0.dot(f.e1), -0.9);
+  EXPECT_LT(d0.dot(f.e2), 0.0);
+  EXPECT_GT((pts.back().x - f.x).dot(f.e2), 0.0);
+}
+
+TEST(FrontStressIntensity, SplitsJByTheOpeningRatiosWithTheModeThreeFactor) {
+  const double mu = 1e9, nu = 0.3, A = 1 - nu;
+  // Openings of K = (1, 0.5, 0.25) (arbitrary units): cod_I : cod_II : cod_III = K_I : K_II : K_III / A.
+  const double KI = 2e6, KII = 1e6, KIII = 0.5e6;
+  const double G = (A * (KI * KI + KII * KII) + KIII * KIII) / (2 * mu);
+  for (double scale : {1e-6, -1e-6}) {  // a closing crack: all signs flip
+    const auto k = crack::stress_intensity3(G, scale * KI, scale * KII, scale * KIII / A, mu, nu);
+    const double sg = scale > 0 ? 1 : -1;
+    EXPECT_NEAR(k.KI, sg * KI, 1e-6 * KI);
+    EXPECT_NEAR(k.KII, sg * KII, 1e-6 * KI);
+    EXPECT_NEAR(k.KIII, sg * KIII, 1e-6 * KI);
+  }
+  // The largest opening is the divisor: pure mode III.
+  const auto t = crack::stress_intensity3(KIII * KIII / (2 * mu), 0, 0, 1e-6, mu, nu);
+  EXPECT_NEAR(t.KIII, KIII, 1e-9 * KIII);
+  EXPECT_EQ(t.KI, 0.0);
+  // No opening: pure mode I; a negative J: zero.
+  EXPECT_NEAR(crack::stress_intensity3(G, 0, 0, 0, mu, nu).KI, std::sqrt(2 * mu * G / A), 1e-9 * KI);
+  EXPECT_EQ(crack::stress_intensity3(-1.0, 1e-6, 0, 0, mu, nu).KI, 0.0);
+}
+
+TEST(FrontReference, GivesPennyIrwinAndTheInclinedPennyOfValidationSection4) {
+  crack::EllipseReference r;
+  r.a = r.b = 0.01;
+  r.stress = 40e6;
+  r.nu = 0.298;
+  const double K0 = 2 * r.stress * std::sqrt(r.a / kPi);
+  const crack::FrontFrame up = frame_at({r.a, 0, 0}, Vec<3>::UnitX(), Vec<3>::UnitZ());
+  EXPECT_NEAR(r.at(up).KI, K0, 1e-9 * K0);  // 2 sigma sqrt(a / pi)
+  // Irwin at the end of the minor axis (phi = 90 degrees, the deepest point A of the rod):
+  // sigma sqrt(pi b) / E(k); E(k) for b/a = 20/35 (k^2 = 0.67347) is 1.257256 (the integral by the
+  // midpoint rule, 2e5 points), and 400 MPa gives validation.md's infinite-body 79.7 MPa sqrt(m).
+  r.a = 0.035, r.b = 0.020;
+  const crack::FrontFrame A = frame_at({0, r.b, 0}, Vec<3>::UnitY(), Vec<3>::UnitZ());
+  EXPECT_NEAR(r.phi(A.x), kPi / 2, 1e-12);
+  EXPECT_NEAR(r.at(A).KI / (r.stress * std::sqrt(kPi * r.b)), 1 / 1.2572558, 1e-7);
+  r.stress = 400e6;
+  EXPECT_NEAR(r.at(A).KI / 1e6, 79.7, 0.05);
+  r.stress = 40e6;
+  // At the end of the major axis: (b/a)^(1/2) of that.
+  const crack::FrontFrame B = frame_at({r.a, 0, 0}, Vec<3>::UnitX(), Vec<3>::UnitZ());
+  EXPECT_NEAR(r.at(B).KI / r.at(A).KI, std::sqrt(r.b / r.a), 1e-12);
+  // The inclined penny crack (crack plane at 60 degrees to the load axis): K / K0 at theta = 0, 45,
+  // 90 degrees from the direction of shear, validation.md §4: (0.750, 0.509, 0), (0.750, 0.360,
+  // 0.253), (0.750, 0, 0.357) in magnitude.
+  crack::EllipseReference p;
+  p.a = p.b = 0.01, p.stress = 40e6, p.nu = 0.298;
+  p.normal = Vec<3>(0.5, 0, std::sqrt(0.75));
+  p.major = Vec<3>(std::sqrt(0.75), 0, -0.5);
+  p.load_axis = Vec<3>::UnitZ();
+  const double k0 = 2 * p.stress * std::sqrt(p.a / kPi);
+  const Vec<3> shear = -p.major;  // the in-plane direction of the load axis
+  const Vec<3> other = p.normal.cross(shear);
+  const double expect[3][3] = {{0.750, 0.509, 0}, {0.750, 0.360, 0.253}, {0.750, 0, 0.357}};
+  for (int i = 0; i < 3; ++i) {
+    const double th = i * kPi / 4;
+    const Vec<3> radial = std::cos(th) * shear + std::sin(th) * other;
+    const auto k = p.at(frame_at(p.center + p.a * radial, radial, p.normal));
+    EXPECT_NEAR(std::fabs(k.KI) / k0, expect[i][0], 6e-4) << i;
+    EXPECT_NEAR(std::fabs(k.KII) / k0, expect[i][1], 6e-4) << i;
+    EXPECT_NEAR(std::fabs(k.KIII) / k0, expect[i][2], 6e-4) << i;
+  }
+}
+
+// --- the solver ------------------------------------------------------------------------------
+
+// Validation 5: the DCB slab of issue 16 (a through crack in a slab one cell thick between symmetry
+// planes) gives the 2D plane-strain DCB's J at every front node within 1 %: the contour, its
+// extrapolations and the 3D displacement gradients (strain plus the particles' integrated rotation)
+// reduce to the 2D ones.
+TEST(CrackFrontJ, ThroughCrackedSlabGivesThePlaneStrainDcbJAtEveryFrontNode) {
+  const double end = 0.1;
+  json s2 = test::dcb_slab_scene(2, end), s3 = test::dcb_slab_scene(3, end);
+  s2["crack_tips"] = json::object();
+  s3["crack_tips"] = json::object();
+  Model<2> m2 = build_model<2>(s2);
+  Model<3> m3 = build_model<3>(s3);
+  ASSERT_TRUE(m3.crack_tips.has_value());
+  ASSERT_EQ(m3.particles.rotation3.size(), m3.particles.size());  // kept only because J is asked for
+  auto st2 = make_stepper<2>(m2);
+  auto st3 = make_stepper<3>(m3);
+  const long steps = std::lround(end / m2.dt);
+  ASSERT_FALSE(test::advance(*st2, steps));
+  ASSERT_FALSE(test::advance(*st3, steps));
+  double J2d = 0;
+  for (const auto& r : st2->crack_tip_parameters(*m2.crack_tips))
+    if (r.end == 1) J2d = r.J1;
+  ASSERT_GT(J2d, 1e-3);
+  const auto fronts = st3->crack_front_parameters(*m3.crack_tips);
+  ASSERT_GE(fronts.size(), 3u);
+  for (const auto& r : fronts) {
+    std::printf("front node %d at z = %.4g mm: J1 %.6g J/m^2 (2D %.6g: %+.3f %%), J2 %.3g, KI %.5g, KII %.3g, KIII %.3g, "
+                "flag %d\n", r.node, r.x.z() * 1e3, r.J1, J2d, 100 * (r.J1 / J2d - 1), r.J2, r.KI, r.KII, r.KIII, r.flag);
+    EXPECT_NEAR(r.J1 / J2d, 1.0, 0.01) << "node " << r.node;
+    EXPECT_LT(std::fabs(r.KIII), 0.03 * r.KI) << "node " << r.node;
+  }
+}
+
+// Validation 6: a uniform velocity added to every particle leaves J unchanged (kinetic terms are
+// taken relative to the front's motion): eq. 32 and eq. 33.
+TEST(CrackFrontJ, AUniformVelocityAddedToEveryParticleLeavesJUnchanged) {
+  const double end = 0.06;
+  for (bool volume : {false, true}) {
+    json s = test::dcb_slab_scene(3, end);
+    s["crack_tips"] = {{"volume_term", volume}};
+    Model<3> m = build_model<3>(s);
+    auto st = make_stepper<3>(m);
+    ASSERT_FALSE(test::advance(*st, std::lround(end / m.dt)));
+    const auto before = st->crack_front_parameters(*m.crack_tips);
+    for (auto& v : m.particles.v) v += Vec<3>(3.0, -2.0, 1.0);  // m/s, against arm speeds of mm/s
+    const auto after = st->crack_front_parameters(*m.crack_tips);
+    ASSERT_EQ(before.size(), after.size());
+    for (std::size_t i = 0; i < before.size(); ++i) {
+      EXPECT_NEAR(after[i].J1, before[i].J1, 1e-9 * std::fabs(before[i].J1)) << "volume term " << volume << ", node " << i;
+      EXPECT_NEAR(after[i].KI, before[i].KI, 1e-9 * std::fabs(before[i].KI)) << "volume term " << volume << ", node " << i;
+    }
+  }
+}
+
+// --- the scene --------------------------------------------------------------------------------
+
+json penny_block() {
+  json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/block_penny_crack.json");
+  s.erase("output");
+  s["crack_tips"] = json::object();
+  return s;
+}
+
+TEST(CrackFrontScene, AContourThatLeavesTheGridIsAnErrorNamingTheCrackFrontAndNode) {
+  json s = penny_block();
+  s["crack_tips"]["radius"] = 6;  // 1 mm cells: the circle reaches z = 5.5 + 6 mm, its nodes 12.5; the grid ends at 12
+  const SceneError e = test::error_of([&] { build_model<3>(s); });
+  EXPECT_EQ(e.key_path(), "crack_tips.radius");
+  EXPECT_NE(e.reason().find("of front 0 of crack 'penny'"), std::string::npos) << e.what();
+  EXPECT_NE(e.reason().find("leaves the grid"), std::string::npos) << e.what();
+}
+
+TEST(CrackFrontScene, AFrontNearAFreeSurfaceIsWarnedAboutAndItsNodesFlagged) {
+  json s = penny_block();
+  s["cracks"][0]["ellipse"]["center"] = {6.3, 10.3, 5.5};  // 1.3 mm from the face x = 0: a 2-cell contour leaves it
+  const Model<3> m = build_model<3>(s);
+  bool warned = false;
+  for (const auto& w : m.warnings) warned = warned || w.find("leave the material") != std::string::npos;
+  EXPECT_TRUE(warned);
+  const auto& flags = m.cracks[0].fronts[0].flags;
+  const auto flagged = std::count_if(flags.begin(), flags.end(), [](uint8_t f) { return f & crack::kFlagContourOutside; });
+  EXPECT_GT(flagged, 0);
+  EXPECT_LT(flagged, static_cast<long>(flags.size()) / 2);  // only the nodes near that face
+}
+
+TEST(CrackFrontScene, NoFrontInsideTheMaterialAndBadReferencesAreErrors) {
+  json s = penny_block();
+  s["cracks"][0]["tips"] = "none";
+  EXPECT_EQ(test::error_of([&] { build_model<3>(s); }).key_path(), "crack_tips");
+  s = penny_block();
+  s["crack_tips"]["reference"] = {{"type", "embedded_crack"}, {"crack", "nope"}, {"stress", 10}};
+  EXPECT_EQ(test::error_of([&] { build_model<3>(s); }).key_path(), "crack_tips.reference.crack");
+  s["crack_tips"]["reference"] = {{"type", "griffith"}, {"crack", "penny"}, {"stress", 10}};
+  EXPECT_EQ(test::error_of([&] { build_model<3>(s); }).key_path(), "crack_tips.reference.type");
+  s["crack_tips"]["reference"] = {{"type", "embedded_crack"}, {"crack", "penny"}, {"stress", 10}};
+  EXPECT_EQ(build_model<3>(s).front_references.size(), 1u);
+  // 2D scenes have no reference key.
+  json d = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");
+  d["crack_tips"] = {{"reference", {{"type", "embedded_crack"}}}};
+  EXPECT_EQ(test::error_of([&] { build_model<2>(d); }).key_path(), "crack_tips.reference");
+}
+
+}  // namespace
+}  // namespace cleave
