@@ -6,7 +6,10 @@
 // range of the ratios. Wall-clock time is the figure; printed beside it are the ratio of the process
 // CPU times (with one thread, insensitive to time slices lost to other processes on a shared
 // machine) and the ratio of the fastest block of each (the least disturbed by other processes).
-// Usage: cleave-bench-crack [--case dcb|rod3d] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]
+// Usage: cleave-bench-crack [--case dcb|rod3d|fronts] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]
+// --case fronts: the cost of evaluating J and K at every front node (crack_tips in 3D, issue 17) against
+// one step, the rod at 3 mm cells (480 000 particles) stepped 40 steps into its loading, then a step and
+// an evaluation alternately (which first alternates too), R = 10 repetitions.
 // --case rod3d: the same for 3D cracks, the quarter rod of seed 000 §4.1 (data/scenes/rod_elliptical_crack.json)
 // at 2.5 mm cells, 829 440 particles, 20 repetitions.
 // (dcb defaults: 0.25 mm cells = 230 400 particles, blocks of 2 steps, 150 repetitions, after 5 warm-up
@@ -75,6 +78,38 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
+// --case fronts: an evaluation of every front node against a step, alternating.
+int bench_fronts(const nlohmann::json& scene, int reps) {
+  Model<3> m = build_model<3>(scene);
+  auto stepper = make_stepper<3>(m);
+  for (int i = 0; i < 40; ++i) stepper->step();  // the load reaches the crack (in 40 steps at 3 mm)
+  std::size_t nodes = 0;
+  std::vector<double> step_ms, eval_ms, ratio;
+  using clock = std::chrono::steady_clock;
+  const auto ms = [](clock::time_point a, clock::time_point b) { return 1e3 * std::chrono::duration<double>(b - a).count(); };
+  for (int i = 0; i < reps; ++i) {
+    double s = 0, e = 0;
+    for (int k = 0; k < 2; ++k) {
+      const auto t0 = clock::now();
+      if ((i + k) % 2 == 0) {
+        stepper->step();
+        s = ms(t0, clock::now());
+      } else {
+        nodes = stepper->crack_front_parameters(*m.crack_tips).size();
+        e = ms(t0, clock::now());
+      }
+    }
+    step_ms.push_back(s), eval_ms.push_back(e), ratio.push_back(e / s);
+    std::printf("rep %d: step %.1f ms, evaluation of %zu front nodes %.1f ms, ratio %.3f\n", i + 1, s, nodes, e, e / s);
+  }
+  std::printf("rod (3D, elliptical crack), %zu particles, %d threads, %zu front nodes: step %.1f ms, evaluation %.1f ms "
+              "(%.2f ms per node), evaluation / step %.1f %% (per-rep range %.1f ... %.1f %%)\n",
+              m.particles.size(), omp_get_max_threads(), nodes, median(step_ms), median(eval_ms),
+              median(eval_ms) / double(std::max<std::size_t>(nodes, 1)), 100 * median(ratio),
+              100 * *std::min_element(ratio.begin(), ratio.end()), 100 * *std::max_element(ratio.begin(), ratio.end()));
+  return 0;
+}
+
 template <int Dim>
 int bench(const char* what, const nlohmann::json& scene, int steps, int reps, const std::string& only, bool null_test);
 
@@ -93,14 +128,20 @@ int main(int argc, char** argv) {
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else if (a == "--null") null_test = true;
     else ok = false;
-    if (!ok || (!only.empty() && only != "cracked" && only != "uncracked") || (which != "dcb" && which != "rod3d")) {
-      std::fprintf(stderr, "usage: cleave-bench-crack [--case dcb|rod3d] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]\n");
+    if (!ok || (!only.empty() && only != "cracked" && only != "uncracked") || (which != "dcb" && which != "rod3d" && which != "fronts")) {
+      std::fprintf(stderr, "usage: cleave-bench-crack [--case dcb|rod3d|fronts] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]\n");
       return a == "--help" ? 0 : 2;
     }
+  }
+  if (which == "fronts") {
+    nlohmann::json scene = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/rod_elliptical_crack.json");
+    scene["resolution"] = cell > 0 ? cell : 3.0;
+    return bench_fronts(scene, reps > 0 ? reps : 10);
   }
   if (which == "rod3d") {  // seed 000 §4.1, its quarter model refined to >= 500 000 particles (3 mm: 480 000)
     nlohmann::json scene = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/rod_elliptical_crack.json");
     scene["resolution"] = cell > 0 ? cell : 2.5;  // mm: 829 440 particles (the grid takes 7.5 / k)
+    scene.erase("crack_tips");  // the stepping's cost (J along the front costs at output times only)
     return bench<3>("rod (3D, elliptical crack)", scene, steps, reps > 0 ? reps : 20, only, null_test);
   }
   nlohmann::json scene = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");

@@ -10,7 +10,9 @@ largest |K_II|, |K_III| / reference, and the wall time.
 Usage: bench/crack_fronts/penny_static.py [--cleave build/bin/cleave] [--out DIR]
           [--cells 8] [--blocks 2,3,4] [--radii 2,4] [--volume-term] [--end-us 150] [--threads N]
 """
-import argparse, csv, json, math, pathlib, subprocess, sys, time
+import argparse, math, pathlib
+
+from fronts_run import run_scene
 
 root = pathlib.Path(__file__).resolve().parents[2]
 ap = argparse.ArgumentParser()
@@ -62,17 +64,8 @@ print(f"a = {args.cells} cells ({h:g} mm), reference K_I = 2 sigma sqrt(a/pi) = 
 print("block | contour | t (us) | K_I/ref min..max (mean) | max |K_II|/ref | max |K_III|/ref | nodes | wall (s)")
 for block in [float(b) for b in args.blocks.split(",")]:
     for radius in [float(r) for r in args.radii.split(",")]:
-        out = pathlib.Path(args.out) / f"c{args.cells}_b{block:g}_r{radius:g}{'_v' if args.volume_term else ''}"
-        out.mkdir(parents=True, exist_ok=True)
-        (out / "scene.json").write_text(json.dumps(scene(block, radius), indent=1))
-        cmd = [args.cleave, "run", str(out / "scene.json"), "--out", str(out / "run"), "--quiet"]
-        if args.threads:
-            cmd += ["--threads", args.threads]
-        t0 = time.time()
-        subprocess.run(cmd, check=True)
-        wall = time.time() - t0
-        rows = list(csv.DictReader(open(out / "run/crack_fronts.csv")))
-        times = sorted({float(r["time_s"]) for r in rows})
+        tag = f"c{args.cells}_b{block:g}_r{radius:g}{'_v' if args.volume_term else ''}"
+        rows, times, wall = run_scene(args.cleave, scene(block, radius), pathlib.Path(args.out) / tag, args.threads)
         for t in times[-3:]:
             good = [r for r in rows if float(r["time_s"]) == t and int(float(r["flag"])) == 0]
             ki = [float(r["KI_Pa_sqrt_m"]) / float(r["KI_ref_Pa_sqrt_m"]) for r in good]

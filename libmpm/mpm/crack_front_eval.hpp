@@ -14,6 +14,7 @@
 // each one's sums in a fixed particle order, so the result does not depend on the thread count.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -86,6 +87,19 @@ inline Mat<3> full_tensor(const Sym<3>& s) {
 
 }  // namespace detail
 
+// The curvature of a front at node k in its plane: the rate at which its ahead direction e1 turns
+// towards the direction of travel, (delta e1 . delta x) / |delta x|^2 between the neighbouring nodes
+// (one-sided at the ends of an open front); > 0 where the front is convex (a penny crack: 1 / radius).
+inline double front_curvature(const crack::CrackFront& f, const std::vector<Vec<3>>& points, std::size_t k) {
+  const std::size_t n = f.nodes.size();
+  if (n < 2) return 0.0;
+  const std::size_t a = k == 0 ? (f.closed ? n - 1 : 0) : k - 1;
+  const std::size_t b = k + 1 == n ? (f.closed ? 0 : n - 1) : k + 1;
+  const Vec<3> dx = points[f.nodes[b]] - points[f.nodes[a]], de = f.ahead[b] - f.ahead[a];
+  const double d2 = dx.squaredNorm();
+  return d2 > 0.0 ? de.dot(dx) / d2 : 0.0;
+}
+
 // accel(p): the acceleration of particle p in the last step (from the grid, with its own fields).
 template <class SF, class Accel>
 std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const crack::TipSettings& ts, Accel&& accel) {
@@ -128,6 +142,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   std::vector<crack::FrontRecord> out(jobs.size());
   std::vector<uint8_t> done(jobs.size(), 0);
   std::vector<std::string> failure(jobs.size());
+  std::vector<std::array<double, 2>> elastic(jobs.size(), {0.0, 0.0});  // mu, nu at the node
 
 #pragma omp parallel for schedule(dynamic, 1) if (jobs.size() > 1)
   for (std::size_t j = 0; j < jobs.size(); ++j) {
@@ -201,11 +216,6 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       }
       return b.key();
     };
-    Narrowed scratch;
-    const auto key_of = [&](const V& x, const V& xn) {
-      narrow(x.cwiseMin(xn), x.cwiseMax(xn), scratch);
-      return key_in(scratch, x, xn);
-    };
 
     // The crack's surface point nearest to x (among the node's local triangles) and the normal of
     // its triangle.
@@ -268,11 +278,20 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     for (const auto& cp : contour) add_cell_nodes(cp.x);
     add_cell_nodes(up), add_cell_nodes(down), add_cell_nodes(f.x);
 
-    // The particles inside the contour (eq. 33's volume): within its plane region and a slab of one
-    // cell along the front, each weighted by the part of its extent along e3 inside the slab.
+    // The particles inside the contour, projected on its plane, within a slab of one cell along the
+    // front (each weighted by the part of its extent in the slab, per unit length): eq. 33's volume
+    // and the out-of-plane term's area. Symmetry planes normal to the front within the slab (a node
+    // on one, or a slab one cell thick between two) mirror the material: its images count too (the
+    // integrands are even in the distance to the plane).
     std::vector<std::pair<int32_t, double>> inside;
-    if (ts.volume_term) {
-      const int r = static_cast<int>(std::ceil(contour_extent * inv_h)) + 1;
+    std::vector<double> mirrors;  // the planes' positions along e3 from the node
+    for (const auto& [axis, position] : m.symmetry_planes) {
+      const double z0 = (position - f.x[axis]) / f.e3[axis];
+      if (std::fabs(f.e3[axis]) > 0.999 && std::fabs(z0) <= h) mirrors.push_back(z0);
+    }
+    double slab_material = 0.0;  // the slab's share held by particles and their images
+    if (ts.volume_term || ts.out_of_plane_term) {
+      const int r = static_cast<int>(std::ceil((contour_extent + h) * inv_h)) + 1;
       const int64_t c0 = bins.cell_of(G, f.x);
       if (c0 >= 0) {
         const int64_t ci = c0 / (bins.cells[1] * bins.cells[2]), cj = (c0 / bins.cells[2]) % bins.cells[1],
@@ -285,9 +304,15 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
                 const int32_t p = bins.particle[q];
                 if (!crack::inside_front_contour(f, ts, h, P.x[p])) continue;
                 const double l = std::cbrt(P.volume0[p]), s3 = (P.x[p] - f.x).dot(f.e3);
-                const double overlap = std::min(s3 + 0.5 * l, 0.5 * h) - std::max(s3 - 0.5 * l, -0.5 * h);
-                if (overlap <= 0.0) continue;
-                inside.push_back({p, overlap / (l * h)});
+                const auto in_slab = [&](double c) {
+                  return std::max(0.0, std::min(c + 0.5 * l, 0.5 * h) - std::max(c - 0.5 * l, -0.5 * h));
+                };
+                double in = in_slab(s3);
+                for (const double z0 : mirrors) in += in_slab(2.0 * z0 - s3);
+                if (in <= 0.0) continue;
+                inside.push_back({p, in / (l * h)});
+                slab_material += P.volume0[p] * in / l;
+                if (!ts.volume_term) continue;
                 St st;
                 st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
                 st.for_each_weight([&](int64_t n, double) { need.push_back(n); });
@@ -474,12 +499,22 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       Mat<3> stress = Mat<3>::Zero(), grad_u = Mat<3>::Zero();
       V u = V::Zero();
     };
+    // The triangles of the closed box [lo, hi] grown by a hair (a superset: the crossing tests of the
+    // lines inside the box stay exact), for the lines of one point.
+    Narrowed near_point;
+    const auto narrow_box = [&](const V& lo, const V& hi) {
+      const V eps = V::Constant(1e-9 * h);
+      narrow(lo - eps, hi + eps, near_point);
+    };
     const auto interpolate = [&](const V& x, Point& q) {
       q = Point{};
       double wsum = 0.0;
+      V cell_lo;
+      for (int d = 0; d < 3; ++d) cell_lo[d] = G.origin[d] + h * std::floor((x[d] - G.origin[d]) * inv_h);
+      narrow_box(cell_lo, cell_lo + V::Constant(h));  // x and its cell's nodes
       const bool in_grid = for_cell_nodes(x, [&](int64_t n, double w) {
         if (w == 0.0) return;
-        const Sums* s = field(n, key_of(x, node_pos(n)));
+        const Sums* s = field(n, key_in(near_point, x, node_pos(n)));
         if (!s) return;
         const double k = w / s->m;
         const double kinetic = 0.5 * (s->rho_vv - 2.0 * v_tip.dot(s->rho_v) + s->rho * v_tip.squaredNorm());
@@ -503,17 +538,44 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     }
     // Eq. 33's volume term: sum over the slab's particles of (m_p / slab) [(grad u)^T a - (grad v)^T v].
     for (const auto& [p, weight] : inside) {
+      if (!ts.volume_term) break;  // (the list serves the out-of-plane term too)
       St st;
       st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
       Mat<3> gv = Mat<3>::Zero();
+      {
+        const V first = node_pos(st.base), last = first + (St::K - 1) * V::Constant(h);
+        narrow_box(P.x[p].cwiseMin(first), P.x[p].cwiseMax(last));
+      }
       st.for_each([&](int64_t n, double, const V& g) {
-        const Sums* s = field(n, key_of(P.x[p], node_pos(n)));
+        const Sums* s = field(n, key_in(near_point, P.x[p], node_pos(n)));
         if (s) gv += (s->v / s->m) * g.transpose();
       });
       J += P.mass[p] * weight * (grad_u(p).transpose() * accel(p) - gv.transpose() * (v_rel(p) - v_tip));
     }
     rec.J1 = J.dot(f.e1);
     rec.J2 = J.dot(f.e2);
+    // The out-of-plane term of the 3D J: J at the front = J on the contour - int_A d(sigma_i3 u_i,k)
+    // /dx3 dA (x3 along the front; what the plane contour's divergence leaves of the 3D field). To
+    // first order in the front's curvature kappa (e1 turning towards e3 at the rate kappa), in the
+    // frame that turns with the front, sigma_i3 u_i,k = q^_k + kappa x3 sigma_i1 u_i,k. The second
+    // part gives kappa int_A sigma_i1 u_i,k dA, an area integral in the contour's plane. The first,
+    // the change of q^_k along the front, is left out: it vanishes for modes I and II, and a
+    // derivative along the front (across one slab's particles, or between the nodes' int_A q^_k)
+    // reads the particle lattice rather than the field (docs/validation.md).
+    if (ts.out_of_plane_term) {
+      const double kappa = front_curvature(c.fronts[job.front], c.points, job.node);
+      double q1 = 0.0, q2 = 0.0;
+      for (const auto& [p, weight] : inside) {
+        const V t1 = detail::full_tensor(P.stress[p]) * f.e1;
+        const Mat<3> gu = grad_u(p);
+        q1 += P.volume0[p] * weight * t1.dot(gu * f.e1), q2 += P.volume0[p] * weight * t1.dot(gu * f.e2);
+      }
+      // The slab should be full of material (the contour's area times one cell): a free surface
+      // across it leaves part of the area out.
+      const double area = circle ? M_PI * ts.radius * ts.radius * h * h : 4.0 * ts.radius * ts.radius * h * h;
+      if (slab_material < 0.9 * area * h) rec.flag |= crack::kFlagContourOutside;
+      rec.J1 -= kappa * q1, rec.J2 -= kappa * q2;
+    }
 
     Point a, b;
     if (have_cod_point && interpolate(up, a) && interpolate(down, b)) {
@@ -525,8 +587,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     double mu = 0.0, nu = 0.0;
     if (!m.materials[P.material[nearest]]->isotropic_elastic(mu, nu))
       throw std::runtime_error("crack '" + c.name + "': K from J needs an isotropic elastic material at its fronts");
-    const auto k = crack::stress_intensity3(rec.J1, rec.cod_I, rec.cod_II, rec.cod_III, mu, nu);
-    rec.KI = k.KI, rec.KII = k.KII, rec.KIII = k.KIII;
+    elastic[j] = {mu, nu};
     done[j] = 1;
     } catch (const std::exception& e) {
       failure[j] = e.what();
@@ -534,6 +595,12 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   }
   for (const auto& e : failure)
     if (!e.empty()) throw std::runtime_error(e);
+  for (std::size_t j = 0; j < jobs.size(); ++j)
+    if (done[j]) {
+      crack::FrontRecord& rec = out[j];
+      const auto k = crack::stress_intensity3(rec.J1, rec.cod_I, rec.cod_II, rec.cod_III, elastic[j][0], elastic[j][1]);
+      rec.KI = k.KI, rec.KII = k.KII, rec.KIII = k.KIII;
+    }
   std::vector<crack::FrontRecord> kept;
   for (std::size_t j = 0; j < jobs.size(); ++j)
     if (done[j]) kept.push_back(out[j]);

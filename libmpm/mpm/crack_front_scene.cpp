@@ -80,10 +80,35 @@ crack::EllipseReference read_reference(const json& scene, const UnitSystem& unit
   return ref;
 }
 
+// A front that crosses a symmetry plane meets it at a right angle (the mirrored front continues it
+// smoothly), but the frame at its end node, from one side only, leans by half an edge's turn: set
+// its tangent to the plane's normal, so that the contour lies in the plane and its other half is the
+// mirror image (crack_front_eval.hpp mirrors the out-of-plane term there).
+void square_frames_on_symmetry_planes(Model<3>& m) {
+  const double tol = 1e-6 * m.grid.h;
+  for (auto& c : m.cracks)
+    for (auto& front : c.fronts)
+      for (std::size_t k = 0; k < front.nodes.size(); ++k)
+        for (const auto& [axis, position] : m.symmetry_planes) {
+          const Vec<3>& x = c.points[front.nodes[k]];
+          if (std::fabs(x[axis] - position) > tol || std::fabs(front.tangent[k][axis]) < 0.5) continue;
+          Vec<3> t = Vec<3>::Zero();
+          t[axis] = front.tangent[k][axis] > 0 ? 1.0 : -1.0;
+          const Vec<3> n = (front.normal[k] - front.normal[k].dot(t) * t).normalized();
+          front.tangent[k] = t, front.normal[k] = n, front.ahead[k] = t.cross(n);
+        }
+}
+
 }  // namespace
 
 void read_front_tips(const json& scene, const UnitSystem& units, Model<3>& m) {
-  const crack::TipSettings s = read_contour_settings(scene, m, units.factor(Quantity::Time), {"reference"});
+  crack::TipSettings s = read_contour_settings(scene, m, units.factor(Quantity::Time), {"reference", "out_of_plane_term"});
+  if (scene["crack_tips"].contains("out_of_plane_term")) {
+    const json& v = scene["crack_tips"]["out_of_plane_term"];
+    if (!v.is_boolean()) throw SceneError("crack_tips.out_of_plane_term", "expected true or false");
+    s.out_of_plane_term = v.get<bool>();
+  }
+  square_frames_on_symmetry_planes(m);
   const double h = m.grid.h;
   const MaterialProbe material(m);
   const Vec<3> lo = m.grid.origin, hi = m.grid.upper();

@@ -5,6 +5,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "libmpm/core/run_settings.hpp"
@@ -54,6 +55,9 @@ struct Model : RunSettings {
   std::vector<TractionLoad<Dim>> tractions;
   Vec<Dim> gravity = Vec<Dim>::Zero();
   GridConditions<Dim> conditions;
+  // The symmetry planes of the scene's loads: (axis, position). The conditions above hold them as
+  // node velocities; the crack-front parameters need the planes (a front node on one is mirrored).
+  std::vector<std::pair<int, double>> symmetry_planes;
 };
 
 }  // namespace cleave

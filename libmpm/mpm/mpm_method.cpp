@@ -63,7 +63,8 @@ class MpmMethod final : public Method<Dim> {
       out.push_back(format("%s, J by %s on a %s of %.6g cells (%d points), %s every %.6g s",
                            Dim == 3 ? format("crack fronts: %d, %zu nodes", tips, nodes).c_str()
                                     : format("crack tips: %d", tips).c_str(),
-                           t.volume_term ? "eq. 33 (contour + volume)" : "eq. 32 (contour)",
+                           (std::string(t.volume_term ? "eq. 33 (contour + volume)" : "eq. 32 (contour)") +
+                            (Dim == 3 && t.out_of_plane_term ? " less the out-of-plane term" : "")).c_str(),
                            t.contour == crack::TipSettings::Contour::Circle ? "circle" : "square", t.radius, t.points,
                            this->tip_file().c_str(), m.output.tip_interval));
       for (const auto& r : m.front_references)

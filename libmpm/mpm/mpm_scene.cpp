@@ -330,6 +330,7 @@ Model<Dim> build_model(const json& scene) {
                                          "are at origin + k * cell_size)");
     Vec<Dim> lo = m.grid.origin, hi = m.grid.upper();
     lo[axis] = hi[axis] = m.grid.origin[axis] + std::round(cells) * h;
+    m.symmetry_planes.push_back({axis, lo[axis]});
     node_loop(lo, hi, [&](int64_t n) {
       auto& c = conditions[n];
       c.first |= uint8_t(1u << axis);
