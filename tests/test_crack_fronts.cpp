@@ -245,12 +245,12 @@ TEST(CrackFrontK, PennyCrackInABlockDampedToStaticGivesKIWithinFivePercentAtEver
 // Validation 3 (its static part): the rod of seed 000 §4.1 with an embedded elliptical crack
 // (data/scenes/rod_elliptical_crack.json, quarter model) at the seed's finest cells, 3 mm, damped to
 // static: K_I at the deepest point A (x = 0, y = 20 mm, on a symmetry plane) within 3 % of the
-// finite rod's 83.6 MPa m^1/2 (validation.md §4). K_I settles to 0.2 % by 260 us.
+// finite rod's 83.6 MPa m^1/2 (validation.md §4). K_I at 240 us is within 0.2 % of its value at 400 us.
 TEST(CrackFrontK, RodWithAnEmbeddedEllipticalCrackDampedToStaticGivesKIAtTheDeepestPointWithinThreePercent) {
   json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/rod_elliptical_crack.json");
   s["resolution"] = 3;
   s["damping"] = {{"kinetic", 0.05}};  // 1/us
-  s["time"]["end"] = 300;
+  s["time"]["end"] = 250;
   s.erase("output");
   Model<3> m = build_model<3>(s);
   auto st = make_stepper<3>(m);
@@ -321,6 +321,9 @@ TEST(CrackFrontScene, NoFrontInsideTheMaterialAndBadReferencesAreErrors) {
   EXPECT_EQ(test::error_of([&] { build_model<3>(s); }).key_path(), "crack_tips.reference.type");
   s["crack_tips"]["reference"] = {{"type", "embedded_crack"}, {"crack", "penny"}, {"stress", 10}};
   EXPECT_EQ(build_model<3>(s).front_references.size(), 1u);
+  s = penny_block();
+  s["crack_tips"]["out_of_plane_term"] = "yes";
+  EXPECT_EQ(test::error_of([&] { build_model<3>(s); }).key_path(), "crack_tips.out_of_plane_term");
   // 2D scenes have no reference key.
   json d = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");
   d["crack_tips"] = {{"reference", {{"type", "embedded_crack"}}}};

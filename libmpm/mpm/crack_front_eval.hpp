@@ -9,9 +9,11 @@
 // particles inside the contour, per unit length of front (a slab of one cell along the front).
 //
 // Only what the contours need is extrapolated: the nodes of the cells of the contour points, of the
-// opening probes and of the front node, from the particles whose stencils reach them (a binning of
-// the particles by cell, once per evaluation). Front nodes are independent: they run in parallel,
-// each one's sums in a fixed particle order, so the result does not depend on the thread count.
+// opening probes and of the front node (and of eq. 33's particles), from the particles whose stencils
+// reach them. A first pass over the front nodes lists those grid nodes; their sums are taken once,
+// for all front nodes (crack_front_sums.hpp), and each front node takes its own rigid motion out of
+// them. Front nodes run in parallel, every sum in a fixed particle order: the result does not depend
+// on the thread count.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -22,83 +24,12 @@
 #include "libmpm/core/parallel.hpp"
 #include "libmpm/crack/crossing3d.hpp"
 #include "libmpm/crack/front_parameters.hpp"
+#include "libmpm/mpm/crack_front_sums.hpp"
 #include "libmpm/mpm/crack_tip_eval.hpp"  // kCodCells
 #include "libmpm/mpm/model.hpp"
 #include "libmpm/mpm/stencil.hpp"
 
 namespace cleave {
-
-namespace detail {
-
-// Mass-weighted nodal sums of one velocity field at one node (eq. 36), 3D.
-struct FrontFieldSums {
-  uint32_t key = 0;
-  double m = 0.0, energy = 0.0, rho = 0.0, rho_vv = 0.0;
-  Vec<3> rho_v = Vec<3>::Zero(), u = Vec<3>::Zero(), v = Vec<3>::Zero();
-  Mat<3> stress = Mat<3>::Zero(), grad_u = Mat<3>::Zero();
-};
-
-// Particles binned by grid cell (counting sort): the particles of a cell in index order.
-struct CellBins {
-  std::array<int64_t, 3> cells{};
-  std::vector<int64_t> begin;  // per cell + 1
-  std::vector<int32_t> particle;
-
-  int64_t cell_of(const GridGeometry<3>& G, const Vec<3>& x) const {
-    int64_t c = 0;
-    for (int d = 0; d < 3; ++d) {
-      const int64_t i = static_cast<int64_t>(std::floor((x[d] - G.origin[d]) / G.h));
-      if (i < 0 || i >= cells[d]) return -1;
-      c = c * cells[d] + i;
-    }
-    return c;
-  }
-  void build(const GridGeometry<3>& G, const std::vector<Vec<3>>& x) {
-    for (int d = 0; d < 3; ++d) cells[d] = std::max(1, G.nodes[d] - 1);
-    const int64_t n = cells[0] * cells[1] * cells[2];
-    begin.assign(n + 1, 0);
-    std::vector<int64_t> cell(x.size());
-    for (std::size_t p = 0; p < x.size(); ++p) {
-      cell[p] = cell_of(G, x[p]);
-      if (cell[p] >= 0) ++begin[cell[p] + 1];
-    }
-    for (int64_t c = 0; c < n; ++c) begin[c + 1] += begin[c];
-    particle.resize(begin[n]);
-    std::vector<int64_t> next(begin.begin(), begin.end() - 1);
-    for (std::size_t p = 0; p < x.size(); ++p)
-      if (cell[p] >= 0) particle[next[cell[p]]++] = static_cast<int32_t>(p);
-  }
-};
-
-// A particle's displacement gradient: its small strain plus its integrated rotation w (the skew
-// part W_ij = (u_i,j - u_j,i) / 2 as the vector (W_21, W_02, W_10)).
-inline Mat<3> displacement_gradient(const Sym<3>& e, const Vec<3>& w) {
-  Mat<3> g;
-  g << e[0], e[3] - w.z(), e[5] + w.y(),  //
-      e[3] + w.z(), e[1], e[4] - w.x(),   //
-      e[5] - w.y(), e[4] + w.x(), e[2];
-  return g;
-}
-inline Mat<3> full_tensor(const Sym<3>& s) {
-  Mat<3> t;
-  t << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
-  return t;
-}
-
-}  // namespace detail
-
-// The curvature of a front at node k in its plane: the rate at which its ahead direction e1 turns
-// towards the direction of travel, (delta e1 . delta x) / |delta x|^2 between the neighbouring nodes
-// (one-sided at the ends of an open front); > 0 where the front is convex (a penny crack: 1 / radius).
-inline double front_curvature(const crack::CrackFront& f, const std::vector<Vec<3>>& points, std::size_t k) {
-  const std::size_t n = f.nodes.size();
-  if (n < 2) return 0.0;
-  const std::size_t a = k == 0 ? (f.closed ? n - 1 : 0) : k - 1;
-  const std::size_t b = k + 1 == n ? (f.closed ? 0 : n - 1) : k + 1;
-  const Vec<3> dx = points[f.nodes[b]] - points[f.nodes[a]], de = f.ahead[b] - f.ahead[a];
-  const double d2 = dx.squaredNorm();
-  return d2 > 0.0 ? de.dot(dx) / d2 : 0.0;
-}
 
 // accel(p): the acceleration of particle p in the last step (from the grid, with its own fields).
 template <class SF, class Accel>
@@ -127,8 +58,6 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   const double reach = std::max(contour_extent, cod_distance) + 4.5 * h;
   const bool rotations = !P.rotation3.empty();
 
-  detail::CellBins bins;
-  bins.build(G, P.x);
 
   struct Job {
     int crack, front, node;
@@ -139,11 +68,29 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       if (c.tip[f])
         for (std::size_t k = 0; k < c.fronts[f].nodes.size(); ++k)
           jobs.push_back({c.id, static_cast<int>(f), static_cast<int>(k)});
+  // The particles binned in the box of everything the front nodes' evaluations touch.
+  detail::CellBins bins;
+  {
+    V lo = V::Constant(INFINITY), hi = -lo;
+    for (const Job& jb : jobs) {
+      const V& x = m.cracks[jb.crack].points[m.cracks[jb.crack].fronts[jb.front].nodes[jb.node]];
+      lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    }
+    const V margin = V::Constant(reach + 2.0 * h);
+    if (!jobs.empty()) bins.build(G, P.x, lo - margin, hi + margin);
+  }
   std::vector<crack::FrontRecord> out(jobs.size());
   std::vector<uint8_t> done(jobs.size(), 0);
   std::vector<std::string> failure(jobs.size());
   std::vector<std::array<double, 2>> elastic(jobs.size(), {0.0, 0.0});  // mu, nu at the node
 
+  // Two passes over the front nodes: the first only lists the grid nodes each one reads (need);
+  // then eq. 36's sums at all of them, once (a front node's neighbours, half a cell away, read
+  // mostly the same nodes); the second pass evaluates each front node from those sums.
+  std::vector<std::vector<int64_t>> need_of(jobs.size());
+  detail::NodeSums shared;
+  for (int pass = 0; pass < 2; ++pass) {
+  if (pass == 1) shared.build<SF>(m, bins, need_of);
 #pragma omp parallel for schedule(dynamic, 1) if (jobs.size() > 1)
   for (std::size_t j = 0; j < jobs.size(); ++j) {
     try {
@@ -190,16 +137,6 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
             out[o].push_back(static_cast<int32_t>(k));
       }
     };
-    // The same from a narrowed list.
-    const auto narrow_from = [&](const Narrowed& from, const V& lo, const V& hi, Narrowed& out) {
-      out.resize(m.cracks.size());
-      for (std::size_t o = 0; o < m.cracks.size(); ++o) {
-        const Local& L = local[o];
-        out[o].clear();
-        for (const int32_t k : from[o])
-          if ((L.hi[k].array() >= lo.array()).all() && (L.lo[k].array() <= hi.array()).all()) out[o].push_back(k);
-      }
-    };
     std::vector<int32_t> line_ids;
     const auto key_in = [&](const Narrowed& list, const V& x, const V& xn) {
       crack::FieldKeyBuilder b;
@@ -221,8 +158,11 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     // its triangle.
     const auto nearest_on_crack = [&](const V& x, V& q, V& normal) {
       double best = INFINITY;
-      for (const int32_t t : local[c.id].ids) {
-        const auto& T = c.simplices[t];
+      const Local& L = local[c.id];
+      for (std::size_t k = 0; k < L.ids.size(); ++k) {
+        // No point of a triangle whose box is farther than the best so far can be nearer.
+        if ((x - x.cwiseMax(L.lo[k]).cwiseMin(L.hi[k])).squaredNorm() >= best) continue;
+        const auto& T = c.simplices[L.ids[k]];
         const V a = c.points[T[0]], b = c.points[T[1]], cc = c.points[T[2]];
         V nrm = (b - a).cross(cc - a);
         if (!(nrm.squaredNorm() > 0.0)) continue;
@@ -290,26 +230,32 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       if (std::fabs(f.e3[axis]) > 0.999 && std::fabs(z0) <= h) mirrors.push_back(z0);
     }
     double slab_material = 0.0;  // the slab's share held by particles and their images
-    if (ts.volume_term || ts.out_of_plane_term) {
+    // (The first pass needs only the nodes of eq. 33's particles.)
+    if (ts.volume_term || (ts.out_of_plane_term && pass == 1)) {
       const int r = static_cast<int>(std::ceil((contour_extent + h) * inv_h)) + 1;
-      const int64_t c0 = bins.cell_of(G, f.x);
-      if (c0 >= 0) {
-        const int64_t ci = c0 / (bins.cells[1] * bins.cells[2]), cj = (c0 / bins.cells[2]) % bins.cells[1],
-                      ck = c0 % bins.cells[2];
-        for (int64_t a = std::max<int64_t>(0, ci - r); a <= std::min(bins.cells[0] - 1, ci + r); ++a)
-          for (int64_t b = std::max<int64_t>(0, cj - r); b <= std::min(bins.cells[1] - 1, cj + r); ++b)
-            for (int64_t e = std::max<int64_t>(0, ck - r); e <= std::min(bins.cells[2] - 1, ck + r); ++e) {
-              const int64_t cell = (a * bins.cells[1] + b) * bins.cells[2] + e;
+      {
+        const auto [ci, cj, ck] = detail::CellBins::cell_of(G, f.x);
+        for (int64_t a = ci - r; a <= ci + r; ++a)
+          for (int64_t b = cj - r; b <= cj + r; ++b)
+            for (int64_t e = ck - r; e <= ck + r; ++e) {
+              const int64_t cell = bins.index(a, b, e);
+              if (cell < 0) continue;
+              // A cell whose centre lies more than two cells from the contour's plane holds no particle
+              // of the slab (half a cell, plus half a particle and the cell's half-diagonal) unless a
+              // mirror plane is near.
+              const V centre = G.origin + h * V(a + 0.5, b + 0.5, e + 0.5);
+              if (mirrors.empty() && std::fabs((centre - f.x).dot(f.e3)) > 2.0 * h) continue;
               for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
                 const int32_t p = bins.particle[q];
-                if (!crack::inside_front_contour(f, ts, h, P.x[p])) continue;
-                const double l = std::cbrt(P.volume0[p]), s3 = (P.x[p] - f.x).dot(f.e3);
+                const double s3 = (P.x[p] - f.x).dot(f.e3);
+                if (mirrors.empty() && std::fabs(s3) >= h) continue;  // (particles are at most a cell wide)
+                const double l = std::cbrt(P.volume0[p]);
                 const auto in_slab = [&](double c) {
                   return std::max(0.0, std::min(c + 0.5 * l, 0.5 * h) - std::max(c - 0.5 * l, -0.5 * h));
                 };
                 double in = in_slab(s3);
                 for (const double z0 : mirrors) in += in_slab(2.0 * z0 - s3);
-                if (in <= 0.0) continue;
+                if (in <= 0.0 || !crack::inside_front_contour(f, ts, h, P.x[p])) continue;
                 inside.push_back({p, in / (l * h)});
                 slab_material += P.volume0[p] * in / l;
                 if (!ts.volume_term) continue;
@@ -322,6 +268,10 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     }
     std::sort(need.begin(), need.end());
     need.erase(std::unique(need.begin(), need.end()), need.end());
+    if (pass == 0) {
+      need_of[j] = std::move(need);
+      continue;
+    }
     // need_index(n): n's position in `need`, or -1, through a dense table over the box of nodes
     // within `reach` of the front node (every node this evaluation touches lies in it).
     const int box_r = static_cast<int>(std::ceil(reach * inv_h)) + 2, box_n = 2 * box_r + 1;
@@ -359,8 +309,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
         for (int b = kLo; b <= kHi; ++b)
           for (int e = kLo; e <= kHi; ++e) {
             const int64_t i = ijk[0] + a, jj = ijk[1] + b, k = ijk[2] + e;
-            if (i < 0 || jj < 0 || k < 0 || i >= bins.cells[0] || jj >= bins.cells[1] || k >= bins.cells[2]) continue;
-            cells.push_back((i * bins.cells[1] + jj) * bins.cells[2] + k);
+            if (const int64_t cell = bins.index(i, jj, k); cell >= 0) cells.push_back(cell);
           }
     }
     std::sort(cells.begin(), cells.end());
@@ -369,6 +318,8 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     // The rigid motion of the material about the node (as in 2D): mean rotation and least-squares
     // spin of the particles within a cell and a half of the contour, in the slab of the contour.
     V theta = V::Zero(), omega = V::Zero();
+    int32_t nearest = -1;  // the particle nearest the node (its material gives mu, nu)
+    double nearest_d = INFINITY;
     {
       const double fit = contour_extent + 1.5 * h;
       double msum = 0.0;
@@ -380,6 +331,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       for (const int64_t cell : cells)
         for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
           const int32_t p = bins.particle[q];
+          if (const double d = (P.x[p] - f.x).norm(); d < nearest_d) nearest_d = d, nearest = p;
           if (!in_fit(p)) continue;
           const double mp = P.mass[p];
           msum += mp, mx += mp * P.x[p], mv += mp * P.v[p];
@@ -405,53 +357,24 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       return detail::displacement_gradient(P.strain[p], rotations ? V(P.rotation3[p] - theta) : V(-theta));
     };
 
-    // Eq. 36 at the needed nodes: per node, its fields' sums (at most a few).
+    // Eq. 36 at the needed nodes: per node, its fields' sums (at most a few), from the shared raw
+    // sums with this node's rigid motion taken out: grad u - [theta]x, v - omega x (x - x_f).
     std::vector<std::vector<Sums>> sums(need.size());
-    // Triangles narrowed per cell (to the cell grown by a cell, which holds every stencil of its
-    // particles), then per particle (to its stencil's box, which holds its lines).
-    Narrowed near_cell, near_p;
-    int32_t nearest = -1;
-    double nearest_d = INFINITY;
-    for (const int64_t cell : cells) {
-      if (bins.begin[cell] == bins.begin[cell + 1]) continue;
-      const int64_t ci = cell / (bins.cells[1] * bins.cells[2]), cj = (cell / bins.cells[2]) % bins.cells[1],
-                    ck = cell % bins.cells[2];
-      const V corner = G.origin + h * V(double(ci), double(cj), double(ck));
-      narrow(corner - V::Constant(h), corner + V::Constant(2.0 * h), near_cell);
-      for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
-        const int32_t p = bins.particle[q];
-        St st;
-        st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
-        bool any = false;
-        st.for_each_weight([&](int64_t n, double w) { any = any || (w != 0.0 && need_index(n) >= 0); });
-        if (!any) continue;
-        const double d = (P.x[p] - f.x).norm();
-        if (d < nearest_d) nearest_d = d, nearest = p;
-        const double mp = P.mass[p];
-        const double energy = m.materials[P.material[p]]->strain_energy_density(P.stress[p], P.strain[p]);
-        const Mat<3> s = detail::full_tensor(P.stress[p]), gu = grad_u(p);
-        const V vp = v_rel(p);
-        const double rho = mp / P.volume0[p];
-        {
-          const V first = node_pos(st.base), last = first + (St::K - 1) * V::Constant(h);
-          narrow_from(near_cell, P.x[p].cwiseMin(first), P.x[p].cwiseMax(last), near_p);
-        }
-        st.for_each_weight([&](int64_t n, double w) {
-          if (w == 0.0) return;
-          const int i = need_index(n);
-          if (i < 0) return;
-          const uint32_t key = key_in(near_p, P.x[p], node_pos(n));
-          if (key == crack::kFieldKeyOverflow) return;
-          auto& list = sums[i];
-          auto it = std::find_if(list.begin(), list.end(), [&](const Sums& x) { return x.key == key; });
-          if (it == list.end()) it = list.insert(list.end(), Sums{}), it->key = key;
-          const double mw = mp * w;
-          it->m += mw, it->energy += mw * energy, it->stress += mw * s, it->grad_u += mw * gu;
-          it->u += mw * P.u[p], it->v += mw * vp;
-          it->rho += mw * rho, it->rho_vv += mw * rho * vp.squaredNorm(), it->rho_v += mw * rho * vp;
-        });
+    const Mat<3> W_theta = detail::displacement_gradient(Sym<3>::Zero(), theta);
+    for (std::size_t i = 0; i < need.size(); ++i)
+      for (const detail::RawSums& r : shared.at(need[i])) {
+        Sums t;
+        t.key = r.key, t.m = r.m, t.energy = r.energy, t.stress = r.stress, t.u = r.u;
+        t.grad_u = r.grad_u - r.m * W_theta;
+        t.v = r.mv - omega.cross(r.mx - r.m * f.x);
+        t.rho = r.rho;
+        t.rho_v = r.rho_v - omega.cross(r.rho_x - r.rho * f.x);
+        // sum rho |v - omega x (x - x_f)|^2 from the moments of x about the origin.
+        const V rxv = r.rho_xv - f.x.cross(r.rho_v);
+        const Mat<3> rr = r.rho_xx - r.rho_x * f.x.transpose() - f.x * r.rho_x.transpose() + r.rho * f.x * f.x.transpose();
+        t.rho_vv = r.rho_vv - 2.0 * omega.dot(rxv) + omega.squaredNorm() * rr.trace() - omega.dot(rr * omega);
+        sums[i].push_back(t);
       }
-    }
     if (nearest < 0) continue;  // no material at this front node (done stays 0: no row)
     const auto field = [&](int64_t n, uint32_t key) -> const Sums* {
       const int i = need_index(n);
@@ -592,6 +515,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     } catch (const std::exception& e) {
       failure[j] = e.what();
     }
+  }
   }
   for (const auto& e : failure)
     if (!e.empty()) throw std::runtime_error(e);
