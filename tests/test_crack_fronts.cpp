@@ -2,6 +2,7 @@
 // seed 000 §3). Geometry and closed forms first, then the solver against validation.md §4; the
 // figures and the finer runs: docs/validation.md, "Crack-front parameters (3D)".
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -264,6 +265,32 @@ TEST(CrackFrontK, RodWithAnEmbeddedEllipticalCrackDampedToStaticGivesKIAtTheDeep
   std::printf("K_I at A: %.4g MPa m^1/2 (%+.2f %% of 83.6)\n", A->KI / 1e6, 100 * (A->KI / 83.6e6 - 1));
   EXPECT_EQ(A->flag, 0);
   EXPECT_NEAR(A->KI / 83.6e6, 1.0, 0.03);
+}
+
+// The evaluation's sums are per grid node in a fixed particle order (crack_front_sums.hpp), its front
+// nodes independent: one and two threads give the same bits.
+TEST(CrackFrontJ, OneAndTwoThreadsGiveTheSameBits) {
+  json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/block_penny_crack.json");
+  s.erase("output");
+  s["crack_tips"] = {{"volume_term", true}};
+  Model<3> m = build_model<3>(s);
+  auto st = make_stepper<3>(m);
+  ASSERT_FALSE(test::advance(*st, 40));  // the pulse has reached the crack
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const auto one = st->crack_front_parameters(*m.crack_tips);
+  omp_set_num_threads(2);
+  const auto two = st->crack_front_parameters(*m.crack_tips);
+  omp_set_num_threads(threads);
+  ASSERT_EQ(one.size(), two.size());
+  ASSERT_GT(one.size(), 10u);
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    EXPECT_EQ(one[i].J1, two[i].J1) << i;
+    EXPECT_EQ(one[i].J2, two[i].J2) << i;
+    EXPECT_EQ(one[i].KI, two[i].KI) << i;
+    EXPECT_EQ(one[i].KIII, two[i].KIII) << i;
+  }
+  EXPECT_GT(one[0].J1, 0.0);
 }
 
 // --- the scene --------------------------------------------------------------------------------
