@@ -79,10 +79,11 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     const V margin = V::Constant(reach + 2.0 * h);
     if (!jobs.empty()) bins.build(G, P.x, lo - margin, hi + margin);
   }
+  // Every particle-node line's field key, here and in the shared sums, from one binning of the triangles.
+  const detail::TriangleBins tris(m);
   std::vector<crack::FrontRecord> out(jobs.size());
   std::vector<uint8_t> done(jobs.size(), 0);
   std::vector<std::string> failure(jobs.size());
-  std::vector<std::array<double, 2>> elastic(jobs.size(), {0.0, 0.0});  // mu, nu at the node
 
   // Two passes over the front nodes: the first only lists the grid nodes each one reads (need);
   // then eq. 36's sums at all of them, once (a front node's neighbours, half a cell away, read
@@ -90,7 +91,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   std::vector<std::vector<int64_t>> need_of(jobs.size());
   detail::NodeSums shared;
   for (int pass = 0; pass < 2; ++pass) {
-  if (pass == 1) shared.build<SF>(m, bins, need_of);
+  if (pass == 1) shared.build<SF>(m, bins, tris, need_of);
 #pragma omp parallel for schedule(dynamic, 1) if (jobs.size() > 1)
   for (std::size_t j = 0; j < jobs.size(); ++j) {
     try {
@@ -103,62 +104,29 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     rec.s = crack::front_arc_lengths(c, job.front)[job.node];
     if (!c.fronts[job.front].flags.empty()) rec.flag = c.fronts[job.front].flags[job.node];
 
-    // The triangles of every crack within reach (their boxes meet the box about the node): every
-    // particle-node line used below lies in that box, so the crossing tests on these are exact.
+    // The node's own crack's triangles within reach (their boxes meet the box about the node), for the
+    // crack points nearest to the contour's start and the opening probes.
     struct Local {
       std::vector<int32_t> ids;
       std::vector<V> lo, hi;
-    };
-    std::vector<Local> local(m.cracks.size());
-    for (const auto& o : m.cracks) {
-      Local& L = local[o.id];
-      for (std::size_t t = 0; t < o.simplices.size(); ++t) {
-        const auto& T = o.simplices[t];
-        const V lo = o.points[T[0]].cwiseMin(o.points[T[1]]).cwiseMin(o.points[T[2]]);
-        const V hi = o.points[T[0]].cwiseMax(o.points[T[1]]).cwiseMax(o.points[T[2]]);
-        if (((hi - f.x).array() >= -reach).all() && ((lo - f.x).array() <= reach).all()) {
-          L.ids.push_back(static_cast<int32_t>(t));
-          L.lo.push_back(lo), L.hi.push_back(hi);
-        }
+    } local;
+    for (std::size_t t = 0; t < c.simplices.size(); ++t) {
+      const auto& T = c.simplices[t];
+      const V lo = c.points[T[0]].cwiseMin(c.points[T[1]]).cwiseMin(c.points[T[2]]);
+      const V hi = c.points[T[0]].cwiseMax(c.points[T[1]]).cwiseMax(c.points[T[2]]);
+      if (((hi - f.x).array() >= -reach).all() && ((lo - f.x).array() <= reach).all()) {
+        local.ids.push_back(static_cast<int32_t>(t));
+        local.lo.push_back(lo), local.hi.push_back(hi);
       }
     }
-    // The local triangles narrowed to those whose boxes meet [lo, hi] (per crack), and the field key
-    // of a line x -> xn inside that box (crack_fields' key: one code per crossed crack). A particle
-    // narrows once for all its lines (its stencil lies within two cells of it).
-    // (Narrowed lists hold positions k in the crack's Local list.)
-    using Narrowed = std::vector<std::vector<int32_t>>;
-    const auto narrow = [&](const V& lo, const V& hi, Narrowed& out) {
-      out.resize(m.cracks.size());
-      for (std::size_t o = 0; o < m.cracks.size(); ++o) {
-        const Local& L = local[o];
-        out[o].clear();
-        for (std::size_t k = 0; k < L.ids.size(); ++k)
-          if ((L.hi[k].array() >= lo.array()).all() && (L.lo[k].array() <= hi.array()).all())
-            out[o].push_back(static_cast<int32_t>(k));
-      }
-    };
-    std::vector<int32_t> line_ids;
-    const auto key_in = [&](const Narrowed& list, const V& x, const V& xn) {
-      crack::FieldKeyBuilder b;
-      const V lo = x.cwiseMin(xn), hi = x.cwiseMax(xn);
-      for (const auto& o : m.cracks) {
-        const Local& L = local[o.id];
-        line_ids.clear();
-        for (const int32_t k : list[o.id])
-          if ((L.hi[k].array() >= lo.array()).all() && (L.lo[k].array() <= hi.array()).all()) line_ids.push_back(L.ids[k]);
-        if (line_ids.empty()) continue;
-        const crack::Side side = crack::triangle_list_crossing(o.points.data(), o.simplices.data(), line_ids.data(),
-                                                               line_ids.size(), x, xn);
-        if (side != crack::Side::None && !b.add(o.id, side)) return crack::kFieldKeyOverflow;
-      }
-      return b.key();
-    };
+    std::vector<int32_t> key_scratch;
+    const auto key_of = [&](const V& x, const V& xn) { return tris.key(x, xn, key_scratch); };
 
     // The crack's surface point nearest to x (among the node's local triangles) and the normal of
     // its triangle.
     const auto nearest_on_crack = [&](const V& x, V& q, V& normal) {
       double best = INFINITY;
-      const Local& L = local[c.id];
+      const Local& L = local;
       for (std::size_t k = 0; k < L.ids.size(); ++k) {
         // No point of a triangle whose box is farther than the best so far can be nearer.
         if ((x - x.cwiseMax(L.lo[k]).cwiseMin(L.hi[k])).squaredNorm() >= best) continue;
@@ -422,22 +390,12 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       Mat<3> stress = Mat<3>::Zero(), grad_u = Mat<3>::Zero();
       V u = V::Zero();
     };
-    // The triangles of the closed box [lo, hi] grown by a hair (a superset: the crossing tests of the
-    // lines inside the box stay exact), for the lines of one point.
-    Narrowed near_point;
-    const auto narrow_box = [&](const V& lo, const V& hi) {
-      const V eps = V::Constant(1e-9 * h);
-      narrow(lo - eps, hi + eps, near_point);
-    };
     const auto interpolate = [&](const V& x, Point& q) {
       q = Point{};
       double wsum = 0.0;
-      V cell_lo;
-      for (int d = 0; d < 3; ++d) cell_lo[d] = G.origin[d] + h * std::floor((x[d] - G.origin[d]) * inv_h);
-      narrow_box(cell_lo, cell_lo + V::Constant(h));  // x and its cell's nodes
       const bool in_grid = for_cell_nodes(x, [&](int64_t n, double w) {
         if (w == 0.0) return;
-        const Sums* s = field(n, key_in(near_point, x, node_pos(n)));
+        const Sums* s = field(n, key_of(x, node_pos(n)));
         if (!s) return;
         const double k = w / s->m;
         const double kinetic = 0.5 * (s->rho_vv - 2.0 * v_tip.dot(s->rho_v) + s->rho * v_tip.squaredNorm());
@@ -465,12 +423,8 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       St st;
       st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
       Mat<3> gv = Mat<3>::Zero();
-      {
-        const V first = node_pos(st.base), last = first + (St::K - 1) * V::Constant(h);
-        narrow_box(P.x[p].cwiseMin(first), P.x[p].cwiseMax(last));
-      }
       st.for_each([&](int64_t n, double, const V& g) {
-        const Sums* s = field(n, key_in(near_point, P.x[p], node_pos(n)));
+        const Sums* s = field(n, key_of(P.x[p], node_pos(n)));
         if (s) gv += (s->v / s->m) * g.transpose();
       });
       J += P.mass[p] * weight * (grad_u(p).transpose() * accel(p) - gv.transpose() * (v_rel(p) - v_tip));
@@ -510,7 +464,8 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     double mu = 0.0, nu = 0.0;
     if (!m.materials[P.material[nearest]]->isotropic_elastic(mu, nu))
       throw std::runtime_error("crack '" + c.name + "': K from J needs an isotropic elastic material at its fronts");
-    elastic[j] = {mu, nu};
+    const auto k = crack::stress_intensity3(rec.J1, rec.cod_I, rec.cod_II, rec.cod_III, mu, nu);
+    rec.KI = k.KI, rec.KII = k.KII, rec.KIII = k.KIII;
     done[j] = 1;
     } catch (const std::exception& e) {
       failure[j] = e.what();
@@ -519,12 +474,6 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   }
   for (const auto& e : failure)
     if (!e.empty()) throw std::runtime_error(e);
-  for (std::size_t j = 0; j < jobs.size(); ++j)
-    if (done[j]) {
-      crack::FrontRecord& rec = out[j];
-      const auto k = crack::stress_intensity3(rec.J1, rec.cod_I, rec.cod_II, rec.cod_III, elastic[j][0], elastic[j][1]);
-      rec.KI = k.KI, rec.KII = k.KII, rec.KIII = k.KIII;
-    }
   std::vector<crack::FrontRecord> kept;
   for (std::size_t j = 0; j < jobs.size(); ++j)
     if (done[j]) kept.push_back(out[j]);

@@ -30,6 +30,15 @@ std::string list_nodes(const std::vector<std::size_t>& nodes) {
   return s;
 }
 
+// The particle nearest to x (its material is the material at x).
+std::size_t nearest_particle(const Model<3>& m, const Vec<3>& x) {
+  std::size_t nearest = 0;
+  double best = INFINITY;
+  for (std::size_t p = 0; p < m.particles.size(); ++p)
+    if (const double d = (m.particles.x[p] - x).squaredNorm(); d < best) best = d, nearest = p;
+  return nearest;
+}
+
 // crack_tips.reference: {"type": "embedded_crack", "crack": name, "stress": s, "load_axis": d}, the
 // named crack declared by "ellipse" (its centre, axes and semi-axes are the reference's).
 crack::EllipseReference read_reference(const json& scene, const UnitSystem& units, const Model<3>& m) {
@@ -67,12 +76,8 @@ crack::EllipseReference read_reference(const json& scene, const UnitSystem& unit
   if (!(ref.load_axis.norm() > 0.0)) throw SceneError(r.at("load_axis"), "must not be zero");
   ref.load_axis.normalize();
   // nu of the material at the crack (the K_II, K_III of a circle depend on it).
-  std::size_t nearest = 0;
-  double best = INFINITY;
-  for (std::size_t p = 0; p < m.particles.size(); ++p)
-    if ((m.particles.x[p] - ref.center).squaredNorm() < best) best = (m.particles.x[p] - ref.center).squaredNorm(), nearest = p;
   double g = 0;
-  if (!m.materials[m.particles.material[nearest]]->isotropic_elastic(g, ref.nu))
+  if (!m.materials[m.particles.material[nearest_particle(m, ref.center)]]->isotropic_elastic(g, ref.nu))
     throw SceneError(r.at("crack"), "the reference needs an isotropic elastic material at the crack");
   if (ref.a != ref.b && ref.load_axis.cross(ref.normal).norm() > 1e-9)
     throw SceneError(r.at("load_axis"), "an elliptical (not circular) crack's reference is Irwin's, for a load "
@@ -153,11 +158,7 @@ void read_front_tips(const json& scene, const UnitSystem& units, Model<3>& m) {
         if (flag & crack::kFlagContourCrossesCrack) crossing.push_back(k);
         if (k == 0 || k + 1 == front.nodes.size()) {  // the material at the front (one probe per end)
           double g = 0, nu = 0;
-          std::size_t nearest = 0;
-          double best = INFINITY;
-          for (std::size_t p = 0; p < m.particles.size(); ++p)
-            if ((m.particles.x[p] - fr.x).squaredNorm() < best) best = (m.particles.x[p] - fr.x).squaredNorm(), nearest = p;
-          if (!m.materials[m.particles.material[nearest]]->isotropic_elastic(g, nu))
+          if (!m.materials[m.particles.material[nearest_particle(m, fr.x)]]->isotropic_elastic(g, nu))
             throw SceneError("crack_tips", "crack '" + c.name + "': K from J needs an isotropic elastic material at "
                                            "its fronts");
         }

@@ -184,14 +184,14 @@ inline Mat<3> full_tensor(const Sym<3>& s) {
 class NodeSums {
  public:
   template <class SF>
-  void build(const Model<3>& m, const CellBins& bins, const std::vector<std::vector<int64_t>>& need_of) {
+  void build(const Model<3>& m, const CellBins& bins, const TriangleBins& tris,
+             const std::vector<std::vector<int64_t>>& need_of) {
     using St = Stencil<3, SF>;
     nodes_.clear();
     for (const auto& v : need_of) nodes_.insert(nodes_.end(), v.begin(), v.end());
     std::sort(nodes_.begin(), nodes_.end());
     nodes_.erase(std::unique(nodes_.begin(), nodes_.end()), nodes_.end());
     sums_.assign(nodes_.size(), {});
-    const TriangleBins tris(m);
     const auto& P = m.particles;
     const auto& G = m.grid;
     const double h = G.h, inv_h = 1.0 / h;
