@@ -32,6 +32,8 @@ Usage:
   cleave render OUT [options]       images and movies (stress colours, photoelastic fringes)
   cleave compare OUT --photo IMG --frame SPEC --map X0,Y0,SCALE[,ANGLE] [--points FILE]
   cleave plot OUT                   energy and J/K plots
+  cleave fit [OUT] --points FILE ...  K_I, K_II, T from fringe orders; calibration against a run
+                                    (cleave fit --help)
   cleave --help | --version         (cleave render --help: the renderer's options)
 
 Commands:
@@ -113,6 +115,8 @@ int run_scene_command(const nlohmann::json& scene, const Args& a) {
   opt.resume = a.resume;
   opt.command = app::shell_command(a.argv, false);
   opt.resume_command = app::shell_command(a.argv, true);
+  if (const auto u = scene.find("units"); u != scene.end() && u->is_object() && u->contains("length"))
+    opt.length_unit = (*u)["length"].get<std::string>();  // validated by SceneMethod::build
   opt.progress_interval_s = printer.interval();
   if (!a.quiet) opt.progress = [&](const RunProgress& p) { printer(p); };
   long warnings = 0;
@@ -159,6 +163,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> argv_s(argv + 1, argv + argc);
   if (!argv_s.empty() && (argv_s[0] == "render" || argv_s[0] == "compare" || argv_s[0] == "plot"))
     return app::viz_command(argv_s);
+  if (!argv_s.empty() && argv_s[0] == "fit") return app::fit_command(argv_s);
   Args a;
   a.argv.assign(argv, argv + argc);
   for (std::size_t i = 0; i < argv_s.size(); ++i) {

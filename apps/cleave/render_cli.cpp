@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/cleave/cli_numbers.hpp"
 #include "apps/cleave/render_cli.hpp"
 #include "viz/job/render_job.hpp"
 
@@ -90,22 +91,6 @@ Photo comparison (compare):
                        prints the RMS of the fringe-order difference over the bodies; with --out,
                        PREFIX_difference.png shows |difference| (white 0, black 1 fringe or more)
 )";
-
-std::vector<double> numbers(const std::string& opt, const std::string& s, std::size_t lo, std::size_t hi) {
-  std::vector<double> v;
-  std::stringstream ss(s);
-  for (std::string part; std::getline(ss, part, ',');) {
-    char* end = nullptr;
-    const double d = std::strtod(part.c_str(), &end);
-    if (part.empty() || *end != '\0' || !std::isfinite(d)) throw std::invalid_argument(opt + ": '" + part + "' is not a number");
-    v.push_back(d);
-  }
-  if (v.size() < lo || v.size() > hi)
-    throw std::invalid_argument(opt + " needs " + (lo == hi ? std::to_string(lo) : std::to_string(lo) + " to " + std::to_string(hi)) +
-                                " comma-separated numbers");
-  return v;
-}
-double number(const std::string& opt, const std::string& s) { return numbers(opt, s, 1, 1)[0]; }
 
 // --front-nodes I,J,...: node indices, whole numbers from 0.
 std::vector<int> node_indices(const std::string& opt, const std::string& s) {

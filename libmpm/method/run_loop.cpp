@@ -124,6 +124,7 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
     j["method"] = method.name();
     j["end_time"] = set.end_time;
     j["frames"] = ck.next_frame;
+    j["length_unit"] = opt.length_unit.empty() ? "m" : opt.length_unit;
     if (ck_step >= 0) j["checkpoint"] = {{"step", ck_step}, {"time", ck_time}};
     if (s == "running") {
       const RunProgress p = progress_now();

@@ -39,6 +39,9 @@ struct RunOptions {
   bool handle_signals = true;
   std::string command;         // the command line, named in run.lock for a refused second run
   std::string resume_command;  // what run.json and the stop message tell the user to run
+  // The scene's length unit ("mm"; empty: SI), recorded in run.json as "length_unit" so that tools
+  // reading the run (cleave fit) take lengths in the units the scene was written in.
+  std::string length_unit;
 };
 
 struct RunSummary {

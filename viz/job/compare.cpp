@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "viz/job/fringe_fit_job.hpp"
 #include "viz/job/render_job.hpp"
 #include "viz/optics/photoelastic.hpp"
 #include "viz/render/headless.hpp"
@@ -39,24 +40,15 @@ std::vector<std::array<double, 3>> read_fringe_points(const fs::path& file) {
 
 double fringe_order_rms(const ParticleFrame& f, const PhotoelasticSettings& s, const std::vector<std::array<double, 3>>& pts,
                         std::size_t* used) {
-  // One raster over the points' bounding box, fine enough that a pixel is well below a particle.
-  double x0 = pts[0][0], x1 = x0, y0 = pts[0][1], y1 = y0;
-  for (const auto& p : pts) x0 = std::min(x0, p[0]), x1 = std::max(x1, p[0]), y0 = std::min(y0, p[1]), y1 = std::max(y1, p[1]);
-  const double pad = 1e-6 + 0.01 * std::max(x1 - x0, y1 - y0);
-  x0 -= pad, x1 += pad, y0 -= pad, y1 += pad;
-  const int n = 1024;
-  const double w = x1 - x0, h = y1 - y0;
-  View v{x0, y0, x1, y1, w >= h ? n : std::max(1, int(n * w / h)), h >= w ? n : std::max(1, int(n * h / w))};
-  const Raster r = stress_raster(f, v);
+  std::vector<FringePoint> at;
+  for (const auto& p : pts) at.push_back({p[0], p[1], p[2]});
+  const auto ds = stress_difference_at(f, at);
   double sum = 0;
   std::size_t k = 0;
-  for (const auto& p : pts) {
-    const int i = std::clamp(int((p[0] - v.x0) / (v.x1 - v.x0) * v.width), 0, v.width - 1);
-    const int j = std::clamp(int((v.y1 - p[1]) / (v.y1 - v.y0) * v.height), 0, v.height - 1);
-    const std::size_t q = std::size_t(j) * v.width + i;
-    if (!r.covered[q]) continue;
-    const double N = fringe_order(r.values[3 * q], r.values[3 * q + 1], r.values[3 * q + 2], s);
-    sum += (N - p[2]) * (N - p[2]);
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    if (!std::isfinite(ds[i])) continue;
+    const double N = fringe_order(ds[i], 0, 0, s);  // N depends on s1 - s2 alone
+    sum += (N - at[i].N) * (N - at[i].N);
     ++k;
   }
   if (used) *used = k;
