@@ -495,6 +495,28 @@ TEST(SceneErrors, TractionNamesMissingBody) {
   EXPECT_SCENE_ERROR_2D(s, "loads[0].body", "no body");
 }
 
+TEST(SceneErrors, ATotalForceInKgfBecomesTheTractionOfEqualTotalOnTheLoadedFaces) {
+  auto s = scene2d();
+  s["units"] = {{"force", "kgf"}};
+  s["loads"] = json::parse(R"([{"type": "traction", "face": "+y", "force": [0, 100]}])");
+  const auto m = cleave::build_model<2>(s);
+  ASSERT_EQ(m.tractions.size(), 1u);
+  double area = 0;
+  for (double a : m.tractions[0].face_area) area += a;
+  EXPECT_NEAR(m.tractions[0].traction[1] * area, 980.665, 1e-9);  // 100 kgf
+  EXPECT_EQ(m.tractions[0].traction[0], 0.0);
+  s["units"] = {{"force", "lbf"}};
+  EXPECT_NEAR(cleave::build_model<2>(s).tractions[0].traction[1] * area, 444.82216152605, 1e-9);
+}
+
+TEST(SceneErrors, TractionTakesEitherATractionOrATotalForce) {
+  auto s = scene2d();
+  s["loads"] = json::parse(R"([{"type": "traction", "face": "+y", "traction": [0, -1e6], "force": [0, 1]}])");
+  EXPECT_SCENE_ERROR_2D(s, "loads[0]", "either");
+  s["loads"] = json::parse(R"([{"type": "traction", "face": "+y"}])");
+  EXPECT_SCENE_ERROR_2D(s, "loads[0]", "either");
+}
+
 // ------------------------------------------------------------------------------------------------
 // Damping, output, checks
 

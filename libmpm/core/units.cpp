@@ -24,7 +24,7 @@ const std::vector<Kind>& kinds() {
       {"density", Quantity::Density, {{"kg/m3", 1.0}, {"g/cm3", 1e3}, {"g/mm3", 1e6}}},
       {"velocity", Quantity::Velocity, {{"m/s", 1.0}, {"mm/s", 1e-3}, {"mm/ms", 1.0}, {"mm/us", 1e3}}},
       {"acceleration", Quantity::Acceleration, {{"m/s2", 1.0}, {"mm/s2", 1e-3}, {"g0", 9.80665}}},
-      {"force", Quantity::Force, {{"N", 1.0}, {"mN", 1e-3}, {"kN", 1e3}}},
+      {"force", Quantity::Force, {{"N", 1.0}, {"mN", 1e-3}, {"kN", 1e3}, {"kgf", 9.80665}, {"lbf", 4.4482216152605}}},
       {"inverse_time", Quantity::InverseTime, {{"1/s", 1.0}, {"1/ms", 1e3}, {"1/us", 1e6}}},
   };
   return k;

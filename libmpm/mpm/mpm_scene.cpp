@@ -311,6 +311,12 @@ Model<Dim> build_model(const json& scene) {
   scene::LoadResolvers<Dim> resolvers;
   resolvers["traction"] = [&](const scene::LoadSpec<Dim>& s) {
     m.tractions.push_back(resolve_traction(m, lattices, s));
+    if (s.total_force) {  // the total force spread evenly over the loaded faces' area
+      double area = 0;
+      for (double a : m.tractions.back().face_area) area += a;
+      if (!(area > 0)) throw SceneError(s.at("force"), "no particle face is loaded: the force has no area to act on");
+      m.tractions.back().traction = s.vector / area;
+    }
   };
   resolvers["body_force"] = [&](const scene::LoadSpec<Dim>& s) { m.gravity += s.vector; };
   resolvers["velocity"] = [&](const scene::LoadSpec<Dim>& s) {

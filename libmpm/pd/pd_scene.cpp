@@ -235,6 +235,11 @@ PdSystem<Dim> build_pd_system(const json& scene) {
     }
     if (ld.points.empty())
       throw SceneError(s.path, "no point on side " + s.face + " lies inside the region: nothing would be loaded");
+    if (s.total_force) {  // the total force spread evenly over the loaded points' volume
+      double volume = 0;
+      for (int32_t p : ld.points) volume += P.volume[std::size_t(p)];
+      ld.force_density = s.vector / volume;
+    }
     m.loads.push_back(std::move(ld));
   };
   resolvers["body_force"] = [&](const scene::LoadSpec<Dim>& s) { m.gravity += s.vector; };

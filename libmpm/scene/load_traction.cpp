@@ -8,9 +8,13 @@ namespace {
 
 template <int Dim>
 void read_traction(const nlohmann::json& j, const std::string& path, const LoadContext& c, LoadSpec<Dim>& s) {
-  const ObjectReader r(j, path, {"type", "name", "body", "region", "face", "traction", "rise_time"});
+  const ObjectReader r(j, path, {"type", "name", "body", "region", "face", "traction", "force", "rise_time"});
   s.name = r.string_or("name", path);
-  s.vector = r.vec<Dim>("traction", c.units.factor(Quantity::Stress));
+  if (r.has("traction") == r.has("force"))
+    throw SceneError(path, "give either \"traction\" (force per area) or \"force\" (the total force on the faces)");
+  s.total_force = r.has("force");
+  s.vector = s.total_force ? r.vec<Dim>("force", c.units.factor(Quantity::Force))
+                           : r.vec<Dim>("traction", c.units.factor(Quantity::Stress));
   s.rise_time = r.has("rise_time") ? r.positive("rise_time", c.units.factor(Quantity::Time)) : 0.0;
   s.face = r.string("face");
   if (s.face.size() != 2 || (s.face[0] != '+' && s.face[0] != '-'))

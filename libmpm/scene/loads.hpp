@@ -35,6 +35,8 @@ struct LoadSpec {
   uint8_t mask = 0;         // bit d: component d of `vector` is prescribed (velocity)
   double position = 0.0;    // a plane's position along `axis` (m)
   double rise_time = 0.0;   // linear ramp to full value (s); 0: full value from t = 0
+  bool total_force = false; // traction given as "force": `vector` is the total force (N) on the loaded
+                            // faces, turned into a traction by the method that finds their area
   std::string at(const char* key) const { return path + "." + key; }
 };
 
