@@ -25,6 +25,9 @@ struct RunSettings {
   double dt = 0.0;
   double stable_dt = 0.0;  // the method's stable limit at the start
   double damping = 0.0;    // kinetic damping coefficient kappa (1/s), "damping.kinetic"
+  // "static.tolerance" (> 0): dynamic relaxation to the static state (method/relaxation.hpp): damping
+  // kept critical, the run ends when static; time.end is then the latest it may end. 0: dynamics.
+  double static_tolerance = 0.0;
   double energy_blowup_factor = 10.0;
   OutputSettings output;
   std::vector<std::string> warnings;  // doubts about the scene that are not errors (printed by the CLI)

@@ -73,6 +73,11 @@ class Method {
   // Rows per record of the table (for the size estimate).
   virtual std::size_t tip_rows_per_record() const { return 2; }
   virtual std::vector<std::vector<double>> tip_rows() { return {}; }
+  // Dynamic relaxation (RunSettings::static_tolerance > 0, method/relaxation.hpp): whether the state
+  // is static now (the run loop ends the run there), and where the relaxation stands (for the message
+  // when time.end comes first).
+  virtual bool static_reached() const { return false; }
+  virtual std::string relaxation_state() const { return {}; }
   // Keys added to run.json beside the status (e.g. the first branching of a peridynamic crack).
   virtual nlohmann::json run_info() const { return nlohmann::json::object(); }
 

@@ -228,7 +228,7 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
       const StepProblem problem = method.step();
       if (opt.between_steps) opt.between_steps();
       const double t = method.time();
-      const bool last = t >= set.end_time - eps;
+      const bool last = t >= set.end_time - eps || method.static_reached();
       if (opt.log)
         if (const std::string w = method.take_warning(); !w.empty()) opt.log(w);
       // The checks: the energy's at every global.csv row, and at a step with a problem too; every
@@ -271,8 +271,21 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
         last_report = clock::now();
         opt.progress(progress_now());
       }
+      if (last) break;  // time.end, or a static state reached (dynamic relaxation)
     }
-    status("complete", "");
+    if (set.static_tolerance > 0) {
+      std::ostringstream msg;
+      if (!method.static_reached()) {
+        msg << "not static by time.end = " << set.end_time << " s: " << method.relaxation_state()
+            << "; raise time.end or loosen static.tolerance (the last frame is the state at time.end)";
+        status("aborted", msg.str());
+        throw RunAborted(msg.str());
+      }
+      msg << "static at t = " << method.time() << " s, step " << method.step_count() << ": " << method.relaxation_state();
+      status("complete", msg.str());
+    } else {
+      status("complete", "");
+    }
   } catch (const OutputFailure& e) {
     // Only temporaries of the failed writes go: the last complete frame and checkpoint stay, and
     // run.json says why, even on a full disk (write_final_run_status).

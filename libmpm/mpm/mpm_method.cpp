@@ -2,12 +2,14 @@
 // scene (mpm_scene.cpp), the stepper (mpm_step.cpp), and what a run writes: particle frames, crack
 // frames, global.csv columns, crack_tips.csv rows and the restart state.
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <sstream>
 
 #include "libmpm/io/crack_output.hpp"
 #include "libmpm/mpm/particle_output.hpp"
 #include "libmpm/method/describe.hpp"
+#include "libmpm/method/relaxation.hpp"
 #include "libmpm/method/tip_table.hpp"
 #include "libmpm/mpm/mpm_method.hpp"
 #include "libmpm/mpm/mpm_scene.hpp"
@@ -20,9 +22,13 @@ template <int Dim>
 class MpmMethod final : public Method<Dim> {
  public:
   explicit MpmMethod(const nlohmann::json& scene)
-      : owned_(std::make_unique<Model<Dim>>(build_model<Dim>(scene))), m_(*owned_), stepper_(make_stepper<Dim>(m_)) {}
+      : owned_(std::make_unique<Model<Dim>>(build_model<Dim>(scene))), m_(*owned_), stepper_(make_stepper<Dim>(m_)) {
+    if (m_.static_tolerance > 0) relax_.emplace(m_.static_tolerance);
+  }
   // A method over a model the caller built and keeps (tests and benchmarks inspect it afterwards).
-  explicit MpmMethod(Model<Dim>& m) : m_(m), stepper_(make_stepper<Dim>(m_)) {}
+  explicit MpmMethod(Model<Dim>& m) : m_(m), stepper_(make_stepper<Dim>(m_)) {
+    if (m_.static_tolerance > 0) relax_.emplace(m_.static_tolerance);
+  }
 
   const char* name() const override { return "mpm"; }
   const RunSettings& settings() const override { return m_; }
@@ -88,6 +94,10 @@ class MpmMethod final : public Method<Dim> {
 
   StepProblem step() override {
     StepProblem p = stepper_->step();
+    if (relax_ && relax_->due(stepper_->step_count())) {
+      const auto g = stepper_->global_state();
+      m_.damping = relax_->check(g.time, g.strain, g.kinetic, m_.particles);
+    }
     if (p) p.what = "particle " + std::to_string(p.particle) + " at " + position_text<Dim>(m_.particles.x[p.particle]) +
                     " " + p.what;
     return p;
@@ -101,6 +111,16 @@ class MpmMethod final : public Method<Dim> {
     std::ostringstream s;
     s << "particle " << fast << " at " << position_text<Dim>(P.x[fast]) << ", speed " << P.v[fast].norm() << " m/s";
     return s.str();
+  }
+
+  bool static_reached() const override { return relax_ && relax_->reached(); }
+  std::string relaxation_state() const override { return relax_ ? relax_->state() : std::string(); }
+  nlohmann::json run_info() const override {
+    nlohmann::json j = nlohmann::json::object();
+    if (relax_)
+      j["static"] = {{"tolerance", relax_->tolerance()}, {"reached", relax_->reached()},
+                     {"lowest_mode_rad_per_s", relax_->omega()}, {"damping_per_s", relax_->kappa()}};
+    return j;
   }
 
   std::vector<std::string> global_columns() const override {
@@ -199,6 +219,7 @@ class MpmMethod final : public Method<Dim> {
     if (!P.rotation3.empty()) w.array(P.rotation3);  // 3D with crack-front parameters only
     for (const auto& c : m_.cracks) w.array(c.points), w.array(c.above), w.array(c.below);
     table_.save(w);
+    if (relax_) relax_->save(w);
   }
   void load(StateReader& r) override {
     double t = 0, work = 0;
@@ -214,6 +235,7 @@ class MpmMethod final : public Method<Dim> {
       c.update_extent();
     }
     table_.load(r);
+    if (relax_) relax_->load(r), m_.damping = relax_->kappa();
     stepper_->restore(t, step, work);
   }
 
@@ -247,6 +269,7 @@ class MpmMethod final : public Method<Dim> {
   long tips_step_ = -1;  // step of tips_; -1: none yet
   std::vector<crack::FrontRecord> fronts_;
   long fronts_step_ = -1;
+  std::optional<Relaxation> relax_;  // scenes with "static"
 };
 
 }  // namespace

@@ -114,7 +114,7 @@ static TractionLoad<Dim> resolve_traction(const Model<Dim>& m, const std::vector
 template <int Dim>
 Model<Dim> build_model(const json& scene) {
   ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "resolution", "grid", "mpm", "materials",
-                               "bodies", "loads", "cracks", "crack_tips", "damping", "time", "output", "checks"});
+                               "bodies", "loads", "cracks", "crack_tips", "damping", "static", "time", "output", "checks"});
   if (top.has("method") && top.string("method") != "mpm")  // peridynamics: libmpm/pd/pd_scene.cpp
     throw SceneError("method", "build_model reads MPM scenes only (\"method\": \"mpm\")");
   Model<Dim> m;
@@ -354,6 +354,7 @@ Model<Dim> build_model(const json& scene) {
 
   // --- damping, time, output (shared sections) ----------------------------------------------------
   m.damping = scene::read_damping(scene, units);
+  m.static_tolerance = scene::read_static(scene, m.damping);
   {
     double cmax = 0.0, vmax = 0.0;
     for (const auto& b : m.bodies) cmax = std::max(cmax, m.materials[b.material]->wave_speed());

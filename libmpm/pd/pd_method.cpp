@@ -9,10 +9,12 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "libmpm/io/particle_fields.hpp"
 #include "libmpm/method/describe.hpp"
+#include "libmpm/method/relaxation.hpp"
 #include "libmpm/method/tip_table.hpp"
 #include "libmpm/io/point_set.hpp"
 #include "libmpm/pd/pd_scene.hpp"
@@ -67,8 +69,12 @@ template <int Dim>
 class PdMethod final : public Method<Dim> {
  public:
   explicit PdMethod(const nlohmann::json& scene)
-      : owned_(std::make_unique<PdSystem<Dim>>(build_pd_system<Dim>(scene))), m_(*owned_), solver_(m_) {}
-  explicit PdMethod(PdSystem<Dim>& m) : m_(m), solver_(m_) {}
+      : owned_(std::make_unique<PdSystem<Dim>>(build_pd_system<Dim>(scene))), m_(*owned_), solver_(m_) {
+    if (m_.static_tolerance > 0) relax_.emplace(m_.static_tolerance);
+  }
+  explicit PdMethod(PdSystem<Dim>& m) : m_(m), solver_(m_) {
+    if (m_.static_tolerance > 0) relax_.emplace(m_.static_tolerance);
+  }
 
   const char* name() const override { return "peridynamics"; }
   const RunSettings& settings() const override { return m_; }
@@ -93,8 +99,14 @@ class PdMethod final : public Method<Dim> {
 
   StepProblem step() override {
     solver_.step();
+    if (relax_ && relax_->due(solver_.step_count())) {
+      const auto g = solver_.global_state();
+      m_.damping = relax_->check(g.time, g.strain, g.kinetic, m_.points);
+    }
     return {};
   }
+  bool static_reached() const override { return relax_ && relax_->reached(); }
+  std::string relaxation_state() const override { return relax_ ? relax_->state() : std::string(); }
   double time() const override { return solver_.time(); }
   long step_count() const override { return solver_.step_count(); }
   std::string fastest_point() const override {
@@ -152,6 +164,9 @@ class PdMethod final : public Method<Dim> {
     j["crack_tip_trackers"] = names;  // crack_tips.csv "crack" = index into this list
     if (branch_.time >= 0) j["branching"] = {{"time", branch_.time}, {"x", branch_.x}, {"y", branch_.y}};
     else j["branching"] = nullptr;
+    if (relax_)
+      j["static"] = {{"tolerance", relax_->tolerance()}, {"reached", relax_->reached()},
+                     {"lowest_mode_rad_per_s", relax_->omega()}, {"damping_per_s", relax_->kappa()}};
     return j;
   }
 
@@ -162,6 +177,7 @@ class PdMethod final : public Method<Dim> {
     const auto& P = m_.points;
     w.array(P.u), w.array(P.v), w.array(P.a), w.array(m_.nb.intact);
     tips_.save(w);
+    if (relax_) relax_->save(w);
   }
   // The solver computed the initial accelerations when it was built; they are replaced by the
   // saved ones (bit-identical continuation) together with u, v and the bond states.
@@ -173,6 +189,7 @@ class PdMethod final : public Method<Dim> {
     auto& P = m_.points;
     r.array(P.u, "points"), r.array(P.v, "points"), r.array(P.a, "points"), r.array(m_.nb.intact, "bonds");
     tips_.load(r);
+    if (relax_) relax_->load(r), m_.damping = relax_->kappa();
     solver_.restore(t, step, work, damp);
   }
 
@@ -183,6 +200,7 @@ class PdMethod final : public Method<Dim> {
   std::unique_ptr<PdSystem<Dim>> owned_;  // null when the caller owns the system
   PdSystem<Dim>& m_;
   PdSolver<Dim> solver_;
+  std::optional<Relaxation> relax_;  // scenes with "static"
   TipTable<Dim> tips_{m_.trackers.size(), 1, {}};  // a tracker follows one tip
   Branch branch_;
 };

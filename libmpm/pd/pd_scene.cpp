@@ -54,7 +54,7 @@ double pd_memory_bytes(double points, int m) {
 template <int Dim>
 PdSystem<Dim> build_pd_system(const json& scene) {
   ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "resolution", "peridynamics", "materials",
-                               "bodies", "cracks", "loads", "damping", "time", "output", "checks"});
+                               "bodies", "cracks", "loads", "damping", "static", "time", "output", "checks"});
   PdSystem<Dim> m;
   const UnitSystem units = UnitSystem::from_json(scene.value("units", json()), "units");
   const double L = units.factor(Quantity::Length);
@@ -329,6 +329,7 @@ PdSystem<Dim> build_pd_system(const json& scene) {
 
   // --- damping, time, output, checks (shared sections) -------------------------------------------
   m.damping = scene::read_damping(scene, units);
+  m.static_tolerance = scene::read_static(scene, m.damping);
   scene::read_time(scene, units, m.stable_dt, "sqrt(2 rho / sum_j V_j c_ij) (seed 003 eq. 15)",
                    "no point has a bond, so there is no stable step to scale", m);
   scene::read_output(scene, units, kPdFields, " for peridynamics", !m.trackers.empty(), m);

@@ -50,6 +50,19 @@ double read_damping(const json& scene, const UnitSystem& units) {
   return k;
 }
 
+double read_static(const json& scene, double damping) {
+  if (!scene.contains("static") || scene["static"].is_null()) return 0.0;
+  ObjectReader r(scene["static"], "static", {"tolerance"});
+  const double tol = r.number_or("tolerance", 1e-4, 1.0);
+  if (!(tol > 0 && tol < 0.1))
+    throw SceneError("static.tolerance", "must be between 0 and 0.1 (the relative change of the strain energy over a "
+                                         "period at which the state counts as static; 1e-4 gives K to about 5e-5)");
+  if (damping > 0)
+    throw SceneError("damping.kinetic", "a static scene sets its damping itself (critical for the lowest mode): leave "
+                                        "out damping.kinetic");
+  return tol;
+}
+
 void read_time(const json& scene, const UnitSystem& units, double stable_dt, const std::string& limit,
                const std::string& no_limit_reason, RunSettings& s) {
   if (!scene.contains("time") || scene["time"].is_null()) throw SceneError("time", "missing (needs at least time.end)");
@@ -67,7 +80,8 @@ void read_time(const json& scene, const UnitSystem& units, double stable_dt, con
       throw SceneError("time.dt", "above the stable limit: dt = " + fmt(s.dt) + " s > " + limit + " = " +
                                       fmt(stable_dt) + " s; use a smaller dt or time.cfl");
   } else {
-    const double cfl = r.positive_or("cfl", 0.5);
+    // A static scene (dynamic relaxation) needs stability, not the transient's accuracy: 0.9.
+    const double cfl = r.positive_or("cfl", s.static_tolerance > 0 ? 0.9 : 0.5);
     if (cfl > 1.0) throw SceneError("time.cfl", "must be at most 1 (got " + fmt(cfl) + ")");
     s.dt = cfl * stable_dt;
   }

@@ -19,6 +19,9 @@ const nlohmann::json& array_at(const nlohmann::json& root, const char* key, bool
 // "analysis": the type, and the thickness (in the scene's length unit times `length`; 1 m when absent).
 Analysis read_analysis(const nlohmann::json& scene, double length, double& thickness);
 
+// "static.tolerance" (default 1e-4 when "static" is given; 0 when absent: a dynamic run). Refuses a
+// damping.kinetic beside it (the relaxation sets the damping).
+double read_static(const nlohmann::json& scene, double damping);
 // "damping.kinetic" (1/s), 0 when absent.
 double read_damping(const nlohmann::json& scene, const UnitSystem& units);
 
