@@ -10,6 +10,9 @@
 
 #include "cli_support.hpp"
 #include "viz/fit/williams.hpp"
+#include "viz/job/photo_field.hpp"
+#include "viz/raster/series.hpp"
+#include "viz/render/headless.hpp"
 
 using namespace cleave::test;
 
@@ -124,4 +127,84 @@ TEST_F(FitCli, PointsInPhotoPixelsThroughAMapOrTwoReferencePixelsGiveTheFitOfThe
     EXPECT_NEAR(number_after(r->out, "K_I   = "), 0.6, 1e-5) << r->out;
     EXPECT_NEAR(number_after(r->out, "K_II  = "), 0.05, 1e-5) << r->out;
   }
+}
+
+TEST_F(FitCli, APhotoOfTheRunsFringesWithAWrongFringeConstantCalibratesItBackWithin1Percent) {
+  // A dark-field "photograph" of the strip's fringes (1 mm cells, static) made from the run itself
+  // with f = 7 N/mm/fringe: 480 x 600 pixels of 0.1 mm round the crack, intensity sin^2(pi N) with
+  // a pixel of blur and +-8 grey levels of noise; calibrated from a wrong 9 N/mm/fringe.
+  const fs::path run = dir_ / "strip";
+  ASSERT_EQ(run_cleave("run '" CLEAVE_SOURCE_DIR "/data/scenes/cracked_strip.json' --quiet --out '" + run.string() + "'",
+                       dir_ / "o.txt", dir_ / "e.txt").code, 0);
+  const auto entries = cleave::viz::read_series(run);
+  const auto frame = cleave::viz::read_particle_frame(entries.back().file, entries.back().time);
+  const cleave::viz::PhotoMap map{-24e-3, 30e-3, 1e-4, 0};
+  const auto field = cleave::viz::photo_field(frame, 480, 600, map);
+  cleave::viz::PhotoelasticSettings ps;
+  ps.fringe_constant = 7e3, ps.thickness = 5.7e-3;
+  std::vector<double> I(field.diff.size(), 0.0);
+  for (std::size_t t = 0; t < I.size(); ++t)
+    if (std::isfinite(field.diff[t])) I[t] = cleave::viz::intensity(field.diff[t], 0, 0, ps);
+  cleave::viz::Image photo{480, 600, std::vector<uint8_t>(3 * I.size())};
+  unsigned seed = 12345;
+  for (int j = 0; j < 600; ++j)
+    for (int i = 0; i < 480; ++i) {
+      double sum = 0;
+      int n = 0;
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di)
+          if (i + di >= 0 && i + di < 480 && j + dj >= 0 && j + dj < 600) sum += I[std::size_t(j + dj) * 480 + i + di], ++n;
+      seed = seed * 1103515245u + 12345u;
+      const double noise = double(int(seed >> 16) % 17 - 8);
+      const auto g = uint8_t(std::clamp(255.0 * sum / n + noise, 0.0, 255.0));
+      std::fill_n(&photo.rgb[3 * (std::size_t(j) * 480 + i)], 3, g);
+    }
+  cleave::viz::write_png(dir_ / "photo.png", photo);
+  const auto r = run_headless("fit '" + run.string() + "' --photo '" + (dir_ / "photo.png").string() +
+                              "' --map -24,30,0.1 --calibrate fringe-constant --fringe-constant 9 --thickness 5.7", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NEAR(number_after(r.out, "fringe constant that fits: "), 7.0, 0.07) << r.out;
+  // compare: the centre-line overlay and the folded fringe orders agree with the photo.
+  const auto c = run_headless("compare '" + run.string() + "' --photo '" + (dir_ / "photo.png").string() +
+                              "' --frame last --map -24,30,0.1 --length-unit mm --fringes dark --fringe-constant 7 "
+                              "--thickness 5.7 --smooth 0 --out '" + (dir_ / "cmp").string() + "'", dir_);
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_GT(number_after(c.out, "correlation "), 0.9) << c.out;
+  EXPECT_TRUE(fs::exists(dir_ / "cmp_overlay.png"));
+  std::printf("%s%s", r.out.c_str(), c.out.c_str());
+  if (const char* keep = std::getenv("CLEAVE_KEEP_IMAGES"))  // to look at: the photo and the overlay
+    for (const char* f : {"photo.png", "cmp_overlay.png", "cmp_side_by_side.png"}) fs::copy_file(dir_ / f, fs::path(keep) / f, fs::copy_options::overwrite_existing);
+}
+
+TEST(LoadScale, ADrawnFrameCarriesItsLoadScaleIntoEveryLinearField) {
+  cleave::viz::ParticleFrame f;
+  f.x = {{0, 0, 0}, {1e-3, 0, 0}};
+  f.arrays["stress"] = {6, {1, 2, 3, 4, 0, 0, 5, 6, 7, 8, 0, 0}};
+  f.arrays["principal_stress_difference"] = {1, {3, 4}};
+  f.arrays["material"] = {1, {0, 1}};
+  cleave::viz::RenderOptions o;
+  o.smooth = 0, o.load_scale = 2.5;
+  const auto d = cleave::viz::drawn_frame(f, o);
+  EXPECT_DOUBLE_EQ(d.arrays.at("stress").values[6], 12.5);
+  EXPECT_DOUBLE_EQ(d.arrays.at("principal_stress_difference").values[1], 10.0);
+  EXPECT_DOUBLE_EQ(d.arrays.at("material").values[1], 1.0);  // not a load-linear field
+}
+
+TEST_F(FitCli, AFringeConstantInKgfPerMmGivesTheSameFitAsInNewtons) {
+  const cleave::viz::TipField f = cleave::viz::tip_field_from_K(0, 0, 0, 0.6e6, 0.0, -3.3e6);
+  std::ofstream mm(dir_ / "mm.txt");
+  mm.precision(12);
+  for (int i = 1; i <= 8; ++i)
+    for (int d = -170; d <= 170; d += 20) {
+      const double th = d * 3.14159265358979 / 180, x = i * std::cos(th), y = i * std::sin(th);
+      mm << x << ' ' << y << ' ' << f.stress_difference(x * 1e-3, y * 1e-3) * 5.7e-3 / 7e3 << '\n';
+    }
+  mm.close();
+  const std::string pts = "fit --points '" + (dir_ / "mm.txt").string() + "' --tip 0,0 --thickness 5.7 --terms 2 ";
+  const auto a = run_headless(pts + "--fringe-constant 7", dir_);
+  const auto b = run_headless(pts + "--fringe-constant " + std::to_string(7 / 9.80665) + ",kgf", dir_);
+  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_NEAR(number_after(a.out, "K_I   = "), 0.6, 1e-5);
+  EXPECT_NEAR(number_after(b.out, "K_I   = "), 0.6, 1e-5);
 }

@@ -16,6 +16,8 @@
 #include "apps/cleave/cli_numbers.hpp"
 #include "apps/cleave/render_cli.hpp"
 #include "viz/job/fringe_fit_job.hpp"
+#include "viz/job/photo_field.hpp"
+#include "viz/render/headless.hpp"
 
 namespace cleave::app {
 namespace {
@@ -32,6 +34,9 @@ const char* kFitHelp = R"(Usage:
   cleave fit OUT --frame SPEC --points FILE --calibrate fringe-constant|load-scale [options]
                  the fringe constant (or load scale) that makes the run's fringes fit the points,
                  the other held fixed
+  cleave fit OUT --frame SPEC --photo IMG --map X0,Y0,S[,A] --calibrate fringe-constant|load-scale
+                 the same against a photograph: the scale whose model fringes correlate best with
+                 the photo's intensity (--fringes, --mask, --roi choose what is compared)
 
 Points:
   --points FILE        "x y N" per line (comma or space separated, '#' comments): position and
@@ -40,7 +45,7 @@ Points:
                        run's scene unit from OUT/run.json, mm without a run)
   --pixel-map X0,Y0,S[,A]  points are photo pixels (x right, y down): X0,Y0 is the model position
                        of the photo's top-left corner, S the model length per pixel, A the rotation
-                       of the photo's x axis in degrees (as compare --map)
+                       of the photo's x axis in degrees (as compare --map; --map is the same option)
   --pixel-ref U1,V1,X1,Y1,U2,V2,X2,Y2  points are photo pixels; two reference pixels (U,V) and
                        their model positions (X,Y) fix scale, rotation and origin
 Tip:
@@ -52,7 +57,13 @@ Tip:
   --fit-angle          the crack direction as one more unknown
 Model:
   --terms N            Williams terms per mode (default 5: K, T and three more; 1..8)
-  --fringe-constant F  f_sigma in N/mm/fringe       --thickness MM   specimen thickness in mm
+  --fringe-constant F  f_sigma in N/mm/fringe (F,kgf for kgf/mm/fringe)   --thickness MM   in mm
+  --fringes MODE       the photo's polariscope: dark (default), light, crossed, parallel
+Photo (calibration):
+  --photo IMG          PNG or JPEG photograph, mapped by --map; with --points in pixels, points
+                       outside it are refused
+  --mask IMG           compare only where this image (the photo's size) is white
+  --roi X0,Y0,X1,Y1    compare only inside this box (in --length-unit)
   --sample R0,R1       with OUT: points on 9 rings from R0 to R1 (in --length-unit) every 10 degrees
   --smooth S           with OUT: the run's stress smoothed over S particle spacings as cleave render
                        draws it (default 0: the particles' stresses as written; smoothing flattens
@@ -69,7 +80,9 @@ not determine); 3 the fit did not converge.
 struct FitArgs {
   std::optional<fs::path> run, points, out;
   std::string frame = "last";
-  std::optional<std::vector<double>> tip, sample, pixel_map, pixel_ref;
+  std::optional<std::vector<double>> tip, sample, pixel_map, pixel_ref, roi;
+  std::optional<fs::path> photo, mask;
+  Polariscope mode = Polariscope::CircularDark;
   double angle_deg = 0, f_nmm = 0, t_mm = 0;
   int crack = 0, tip_index = 0, terms = 5;
   bool fit_tip = false, fit_angle = false;
@@ -122,6 +135,19 @@ std::vector<FringePoint> model_points(const FitArgs& a, double L) {
     // Origin: the model position of pixel (0, 0), from the first reference.
     const double c = std::cos(ang), sn = std::sin(ang), u = r[0] * s, v = -r[1] * s;
     x0 = r[2] * L - (c * u - sn * v), y0 = r[3] * L - (sn * u + c * v), pixels = true;
+  }
+  if (pixels && a.photo) {
+    Image photo;
+    try {
+      photo = read_image(*a.photo);
+    } catch (const std::runtime_error& e) {
+      throw std::invalid_argument(e.what());
+    }
+    for (std::size_t k = 0; k < pts.size(); ++k)
+      if (pts[k].x < 0 || pts[k].y < 0 || pts[k].x > photo.width || pts[k].y > photo.height)
+        throw std::invalid_argument("point " + std::to_string(k + 1) + " (" + std::to_string(pts[k].x) + ", " +
+                                    std::to_string(pts[k].y) + ") px lies outside the " + std::to_string(photo.width) +
+                                    "x" + std::to_string(photo.height) + " photo");
   }
   if (pixels) {
     const double c = std::cos(ang), sn = std::sin(ang);
@@ -191,15 +217,55 @@ void print_irwin(const std::vector<FringePoint>& pts, const FringeFitResult& r, 
                 e.sigma_ox * 1e-6, e.r_m * 1e3, e.theta_m * 180 / std::numbers::pi);
 }
 
+std::string format_se(double se) {
+  char b[48];
+  std::snprintf(b, sizeof b, "; +- %.2g", se);
+  return b;
+}
+
+// The calibrated scale as a fringe constant or a load scale; se 0: no standard error (a photo).
+void print_scale(const FitArgs& a, double scale, double se) {
+  if (a.calibrate == "fringe-constant")
+    std::printf("  fringe constant that fits: %.5g N/mm/fringe (%.5g kgf/mm/fringe%s; given %.5g)\n", a.f_nmm / scale,
+                a.f_nmm / scale / 9.80665, se > 0 ? format_se(a.f_nmm * se / (scale * scale)).c_str() : "", a.f_nmm);
+  else
+    std::printf("  load scale that fits: %.5f%s: the run's loads x that (stresses are linear in the load for an "
+                "elastic static run)\n", scale, se > 0 ? format_se(se).c_str() : "");
+}
+
+int calibrate_photo(const FitArgs& a, const ParticleFrame& frame, const PhotoelasticSettings& ps, double L) {
+  if (!a.pixel_map) throw std::invalid_argument("--photo needs --map X0,Y0,S[,A] (where the photo lies on the model)");
+  const auto& m = *a.pixel_map;
+  if (!(m[2] > 0)) throw std::invalid_argument("--map: the length per pixel must be positive");
+  const PhotoMap map{m[0] * L, m[1] * L, m[2] * L, m.size() > 3 ? m[3] * std::numbers::pi / 180 : 0.0};
+  Image photo, mask;
+  try {
+    photo = read_image(*a.photo);
+    if (a.mask) mask = read_image(*a.mask);
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(e.what());
+  }
+  std::optional<std::array<double, 4>> roi;
+  if (a.roi) roi = std::array<double, 4>{(*a.roi)[0] * L, (*a.roi)[1] * L, (*a.roi)[2] * L, (*a.roi)[3] * L};
+  const PhotoField field = photo_field(frame, photo.width, photo.height, map);
+  const auto use = compared_pixels(field, map, a.mask ? &mask : nullptr, roi);
+  const PhotoCalibration c = calibrate_to_photo(photo, field, use, ps);
+  std::printf("calibration on %zu photo pixels at t = %.6g s: the photo's fringes are those of the run's stresses x "
+              "%.5f (intensity correlation %.4f there, %.4f at 1)\n", c.pixels, frame.time, c.scale, c.ncc, c.ncc_at_one);
+  print_scale(a, c.scale, 0.0);
+  return 0;
+}
+
 int fit(const FitArgs& a) {
   if (!(a.f_nmm > 0)) throw std::invalid_argument("fit needs --fringe-constant F (N/mm/fringe, > 0)");
   if (!(a.t_mm > 0)) throw std::invalid_argument("fit needs --thickness MM (> 0)");
-  if ((a.pixel_map || a.pixel_ref) && !a.points) throw std::invalid_argument("--pixel-map and --pixel-ref are for --points");
+  if ((a.pixel_map || a.pixel_ref) && !a.points && !a.photo)
+    throw std::invalid_argument("--pixel-map (--map) and --pixel-ref are for --points and --photo");
   if (a.pixel_map && a.pixel_ref) throw std::invalid_argument("give --pixel-map or --pixel-ref, not both");
   const std::string unit = !a.unit.empty() ? a.unit : a.run ? run_length_unit(*a.run) : "mm";
   const double L = unit_factor(unit);
   PhotoelasticSettings ps;
-  ps.fringe_constant = a.f_nmm * 1e3, ps.thickness = a.t_mm * 1e-3;
+  ps.fringe_constant = a.f_nmm * 1e3, ps.thickness = a.t_mm * 1e-3, ps.mode = a.mode;
   FringeFitOptions o;
   o.terms = a.terms, o.fit_tip = a.fit_tip, o.fit_angle = a.fit_angle;
   o.fringe_constant = ps.fringe_constant, o.thickness = ps.thickness;
@@ -232,17 +298,13 @@ int fit(const FitArgs& a) {
   if (!a.calibrate.empty()) {
     if (a.calibrate != "fringe-constant" && a.calibrate != "load-scale")
       throw std::invalid_argument("--calibrate must be fringe-constant or load-scale, not '" + a.calibrate + "'");
-    if (!a.points) throw std::invalid_argument("--calibrate needs --points FILE (the measured orders)");
+    if (a.photo && !a.points) return calibrate_photo(a, frame, ps, L);
+    if (!a.points) throw std::invalid_argument("--calibrate needs --points FILE (the measured orders) or --photo IMG");
     const auto pts = model_points(a, L);
     const Calibration c = calibrate_scale(frame, ps, pts);
     std::printf("calibration on %zu points at t = %.6g s: measured orders = %.5f x the run's (+- %.2g)\n", c.points,
                 frame.time, c.scale, c.std_error);
-    if (a.calibrate == "fringe-constant")
-      std::printf("  fringe constant that fits: %.5g N/mm/fringe (+- %.2g; given %.5g)\n", a.f_nmm / c.scale,
-                  a.f_nmm * c.std_error / (c.scale * c.scale), a.f_nmm);
-    else
-      std::printf("  load scale that fits: %.5f (+- %.2g): the run's loads x that (stresses are linear in the load "
-                  "for an elastic static run)\n", c.scale, c.std_error);
+    print_scale(a, c.scale, c.std_error);
     std::printf("  RMS residual %.4f fringe orders before, %.4f after\n", c.rms_before, c.rms_after);
     return 0;
   }
@@ -316,10 +378,20 @@ int fit_command(const std::vector<std::string>& args) {
       else if (s == "--fit-tip") a.fit_tip = true;
       else if (s == "--fit-angle") a.fit_angle = true;
       else if (s == "--terms") a.terms = whole(1, 8);
-      else if (s == "--fringe-constant") a.f_nmm = number(s, value());
+      else if (s == "--fringe-constant") {
+        const std::string v = value();
+        const bool kgf = v.ends_with(",kgf");
+        a.f_nmm = number(s, kgf ? v.substr(0, v.size() - 4) : v) * (kgf ? 9.80665 : 1.0);
+      } else if (s == "--fringes") {
+        const auto m = polariscope_from_name(value());
+        if (!m || *m == Polariscope::Seed002) throw std::invalid_argument("--fringes must be dark, light, crossed or parallel");
+        a.mode = *m;
+      } else if (s == "--photo") a.photo = value();
+      else if (s == "--mask") a.mask = value();
+      else if (s == "--roi") a.roi = numbers(s, value(), 4, 4);
       else if (s == "--thickness") a.t_mm = number(s, value());
       else if (s == "--length-unit") a.unit = value(), unit_factor(a.unit);
-      else if (s == "--pixel-map") a.pixel_map = numbers(s, value(), 3, 4);
+      else if (s == "--pixel-map" || s == "--map") a.pixel_map = numbers(s, value(), 3, 4);
       else if (s == "--pixel-ref") a.pixel_ref = numbers(s, value(), 8, 8);
       else if (s == "--sample") a.sample = numbers(s, value(), 2, 2);
       else if (s == "--calibrate") a.calibrate = value();

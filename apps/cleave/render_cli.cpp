@@ -55,6 +55,9 @@ Photoelastic fringes (per pixel from the stress at that pixel):
   --white-light        white light (CIE 1931 observer, D65): Michel-Levy colours
   --thickness MM       specimen thickness in mm (default 1; a --slice is its own thickness)
   --fringe-constant F  material fringe constant f_sigma in N/mm/fringe at the wavelength
+                       (F,kgf: in kgf/mm/fringe)
+  --load-scale S       stresses, strains, displacements and velocities x S: an elastic static
+                       run drawn at S times its load (one run serves a load sequence)
   --stress-optic C     stress-optic coefficient in Brewster (1e-12 /Pa), instead of F
   --wavelength NM      monochromatic wavelength in nm (default 546)
   --polarizer DEG      plane polariscope axis from x, degrees (default 0)
@@ -85,8 +88,11 @@ Photo comparison (compare):
   --map X0,Y0,S[,A]    model position of the photo's top-left corner, model length per photo
                        pixel, rotation of the photo's x axis in degrees
   --points FILE        digitised points "x y N" per line: prints the RMS fringe-order difference
-  --out PREFIX         output prefix for PREFIX_side_by_side.png and PREFIX_overlay.png
-                       (default OUT/compare)
+  --mask IMG           compare only where this image (the photo's size) is white: leave out the
+                       slit, the grips, the far field; --roi X0,Y0,X1,Y1 restricts in model units
+  --out PREFIX         output prefix for PREFIX_side_by_side.png and PREFIX_overlay.png (the
+                       model's fringe centre-lines over the photo: integer orders red and labelled,
+                       half orders blue) (default OUT/compare)
   --run OTHER          instead of a photo: another run of the scene (another resolution, say);
                        prints the RMS of the fringe-order difference over the bodies; with --out,
                        PREFIX_difference.png shows |difference| (white 0, black 1 fringe or more)
@@ -120,7 +126,7 @@ int viz_command(const std::vector<std::string>& args) {
   o.series = args[1];
   double L = 1.0;
   std::vector<std::pair<std::string, std::string>> coords;  // options whose numbers use --length-unit
-  std::optional<std::string> photo, points, map, other_run;
+  std::optional<std::string> photo, points, map, other_run, mask;
   std::string out_prefix;
   std::optional<double> cod_time;
   FrontPlotOptions front;
@@ -196,7 +202,14 @@ int viz_command(const std::vector<std::string>& args) {
         o.opening_scale = number(a, value());
         if (!(o.opening_scale > 0)) throw std::invalid_argument("--opening-scale must be positive (1: the opening as it is)");
       }
-      else if (a == "--fringe-constant") fringe_constant = number(a, value());
+      else if (a == "--fringe-constant") {
+        const std::string v = value();
+        const bool kgf = v.ends_with(",kgf");  // kgf/mm/fringe, as many fringe-constant tables give it
+        fringe_constant = number(a, kgf ? v.substr(0, v.size() - 4) : v) * (kgf ? 9.80665 : 1.0);
+      } else if (a == "--load-scale") {
+        o.load_scale = number(a, value());
+        if (!(o.load_scale > 0)) throw std::invalid_argument("--load-scale must be positive");
+      }
       else if (a == "--stress-optic") brewster = number(a, value());
       else if (a == "--wavelength") wavelength_nm = number(a, value());
       else if (a == "--polarizer") polarizer_deg = number(a, value());
@@ -219,6 +232,7 @@ int viz_command(const std::vector<std::string>& args) {
         if (o.fps < 1 || o.fps > 240) throw std::invalid_argument("--fps must be between 1 and 240");
       } else if (a == "--photo") photo = value();
       else if (a == "--points") points = value();
+      else if (a == "--mask") mask = value();
       else if (a == "--map") map = value();
       else if (a == "--run") other_run = value();
       else if (a == "--out") out_prefix = value();
@@ -294,8 +308,12 @@ int viz_command(const std::vector<std::string>& args) {
         pts = read_fringe_points(*points);
         for (auto& q : *pts) q[0] *= L, q[1] *= L;  // coordinates in --length-unit; orders unchanged
       }
-      const CompareResult r = compare_with_photo(o, *photo, pm, pts, prefix);
+      const CompareResult r = compare_with_photo(o, *photo, pm, pts, prefix,
+                                                 mask ? std::optional<std::filesystem::path>(*mask) : std::nullopt);
       std::printf("agreement: normalised cross-correlation %.4f over %zu pixels\n", r.ncc, r.pixels);
+      if (r.folded_ncc)
+        std::printf("fringe order (folded to [0, 1/2]): correlation %.4f, RMS difference %.4f fringes\n", *r.folded_ncc,
+                    *r.folded_rms);
       if (r.fringe_rms) std::printf("fringe order: RMS difference %.4f over %zu points\n", *r.fringe_rms, r.points_used);
       std::printf("images: %s_side_by_side.png, %s_overlay.png\n", prefix.string().c_str(), prefix.string().c_str());
       return 0;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "viz/job/fringe_fit_job.hpp"
+#include "viz/job/photo_field.hpp"
 #include "viz/job/render_job.hpp"
 #include "viz/optics/photoelastic.hpp"
 #include "viz/render/headless.hpp"
@@ -58,8 +59,10 @@ double fringe_order_rms(const ParticleFrame& f, const PhotoelasticSettings& s, c
 
 CompareResult compare_with_photo(const RenderOptions& o, const fs::path& photo_file, const PhotoMap& map,
                                  const std::optional<std::vector<std::array<double, 3>>>& points,
-                                 const fs::path& out_prefix) {
+                                 const fs::path& out_prefix, const std::optional<fs::path>& mask_file) {
   const Image photo = read_image(photo_file);
+  std::optional<Image> mask_image;
+  if (mask_file) mask_image = read_image(*mask_file);
   const auto entries = read_series(o.series);
   const auto sel = select_frames(entries, o.frames);
   if (sel.size() != 1) throw std::invalid_argument("compare needs exactly one frame (--frame time:T, last, index:I)");
@@ -98,32 +101,36 @@ CompareResult compare_with_photo(const RenderOptions& o, const fs::path& photo_f
       mask[t] = 1;
       std::copy_n(&model.rgb[3 * q], 3, &aligned.rgb[3 * t]);
     }
+  // The pixels compared: on the bodies, in the mask and the region of interest.
+  const PhotoField field = photo_field(f, photo.width, photo.height, map);
+  const std::vector<uint8_t> use = compared_pixels(field, map, mask_image ? &*mask_image : nullptr, o.roi);
   CompareResult res;
   double sa_ = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
   for (std::size_t t = 0; t < mask.size(); ++t) {
-    if (!mask[t]) continue;
+    if (!mask[t] || !use[t]) continue;
     auto lum = [](const uint8_t* c) { return (0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]) / 255.0; };
     const double a = lum(&aligned.rgb[3 * t]), b = lum(&photo.rgb[3 * t]);
     sa_ += a, sb += b, saa += a * a, sbb += b * b, sab += a * b;
     ++res.pixels;
   }
-  if (!res.pixels) throw std::runtime_error("the mapped photo does not overlap the body: check --map");
+  if (!res.pixels) throw std::invalid_argument("the mapped photo does not overlap the body: check --map (and --mask, --roi)");
   const double n = double(res.pixels);
   const double cov_ab = sab / n - sa_ / n * sb / n, va = saa / n - sa_ * sa_ / n / n, vb = sbb / n - sb * sb / n / n;
   res.ncc = va > 0 && vb > 0 ? cov_ab / std::sqrt(va * vb) : 0.0;
-  // Side by side and overlay images.
+  if (o.photo.mode != Polariscope::Seed002) {
+    const FoldedOrderAgreement a = folded_order_agreement(photo, field, use, o.photo);
+    res.folded_ncc = a.ncc, res.folded_rms = a.rms;
+  }
+  // Side by side, and the model's fringe centre-lines over the photo.
   Image side{2 * photo.width, photo.height, std::vector<uint8_t>(6 * std::size_t(photo.width) * photo.height)};
-  Image over = photo;
   for (int j = 0; j < photo.height; ++j)
     for (int i = 0; i < photo.width; ++i) {
       const std::size_t t = std::size_t(j) * photo.width + i;
       std::copy_n(&photo.rgb[3 * t], 3, &side.rgb[3 * (std::size_t(j) * side.width + i)]);
       std::copy_n(&aligned.rgb[3 * t], 3, &side.rgb[3 * (std::size_t(j) * side.width + photo.width + i)]);
-      if (mask[t])
-        for (int c = 0; c < 3; ++c) over.rgb[3 * t + c] = uint8_t((int(photo.rgb[3 * t + c]) + aligned.rgb[3 * t + c]) / 2);
     }
   write_png(out_prefix.string() + "_side_by_side.png", side);
-  write_png(out_prefix.string() + "_overlay.png", over);
+  write_png(out_prefix.string() + "_overlay.png", o.photo.mode == Polariscope::Seed002 ? photo : centre_line_overlay(photo, field, o.photo));
   if (points) res.fringe_rms = fringe_order_rms(f, o.photo, *points, &res.points_used);
   return res;
 }

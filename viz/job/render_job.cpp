@@ -63,7 +63,15 @@ Raster stress_raster(const ParticleFrame& f, const View& v, const RasterOptions&
   return rasterize_2d(f, v, per, 3, ro);
 }
 
-ParticleFrame drawn_frame(const ParticleFrame& f, const RenderOptions& o) {
+ParticleFrame drawn_frame(const ParticleFrame& frame, const RenderOptions& o) {
+  ParticleFrame scaled;
+  if (o.load_scale != 1.0) {
+    scaled = frame;
+    for (const char* name : {"stress", "strain", "von_mises", "principal_stress_difference", "displacement", "velocity"})
+      if (auto it = scaled.arrays.find(name); it != scaled.arrays.end())
+        for (double& v : it->second.values) v *= o.load_scale;
+  }
+  const ParticleFrame& f = o.load_scale != 1.0 ? scaled : frame;
   if (!(o.smooth > 0) || f.dim != 2) return f;
   SmoothSettings s;
   s.sigma = o.smooth;

@@ -41,6 +41,9 @@ struct RenderOptions {
   // 3D cracks (docs/rendering.md, "3D cracks"): their two faces are drawn with the opening K times
   // what it is (viz/raster/crack_section.hpp), over the cubes and as traces in sections. > 0.
   double opening_scale = 1.0;
+  // Stresses, strains, displacements and velocities times this (drawn_frame): an elastic static
+  // run serves a whole load sequence (--load-scale).
+  double load_scale = 1.0;
   // With cut_plane: a frozen-stress slice of this thickness (m, > 0) centred on the plane instead
   // of the one-particle section (viz/raster/slice.hpp); fringes take it as the specimen thickness
   // (photo.thickness is not used).
@@ -70,9 +73,10 @@ RenderResult render_series(const RenderOptions&, const std::function<void(std::s
 // drawn_frame, the smooth outline when o.outline.
 Image field_image(const ParticleFrame&, const View&, const RenderOptions&, ColorBar& bar);
 
-// The frame as it is drawn: its stress smoothed over o.smooth particle spacings, with the cracks of
-// the series at the frame's time as barriers (smooth_stress): the crack paths of a 2D frame, the
-// traces of the 3D crack faces in o.cut_plane for a section; as it is when o.smooth <= 0.
+// The frame as it is drawn: its fields scaled by o.load_scale, its stress smoothed over o.smooth
+// particle spacings, with the cracks of the series at the frame's time as barriers (smooth_stress):
+// the crack paths of a 2D frame, the traces of the 3D crack faces in o.cut_plane for a section; not
+// smoothed when o.smooth <= 0.
 ParticleFrame drawn_frame(const ParticleFrame&, const RenderOptions&);
 
 // Per-pixel in-plane stress (sxx, syy, sxy; a section's "stress_uv") of a frame: Raster with k = 3.
@@ -93,10 +97,15 @@ struct CompareResult {
   std::size_t pixels = 0;      // pixels compared
   std::optional<double> fringe_rms;  // with points: RMS of (model fringe order - digitised order)
   std::size_t points_used = 0;
+  // Folded fringe orders (photo_field.hpp): correlation and RMS difference; not for seed002.
+  std::optional<double> folded_ncc, folded_rms;
 };
+// `mask`: an image of the photo's size, white where pixels are compared; o.roi (model coordinates)
+// restricts them too. PREFIX_overlay.png holds the model's fringe centre-lines over the photo.
 CompareResult compare_with_photo(const RenderOptions&, const std::filesystem::path& photo, const PhotoMap&,
                                  const std::optional<std::vector<std::array<double, 3>>>& points,
-                                 const std::filesystem::path& out_prefix);
+                                 const std::filesystem::path& out_prefix,
+                                 const std::optional<std::filesystem::path>& mask = {});
 // Two runs of one scene (at two resolutions, say): the fringe orders of their frames nearest in
 // time to the selected frame of a, drawn as o says (drawn_frame), compared pixel by pixel over a
 // raster of the bodies of a (1024 pixels along its longer side) where both have material; with
