@@ -129,7 +129,7 @@ TEST_F(FitCli, PointsInPhotoPixelsThroughAMapOrTwoReferencePixelsGiveTheFitOfThe
   }
 }
 
-TEST_F(FitCli, APhotoOfTheRunsFringesWithAWrongFringeConstantCalibratesItBackWithin1Percent) {
+TEST_F(FitCli, APhotoOfTheRunsFringesCalibratesAWrongFringeConstantBackAndGivesKFromItsCentreLines) {
   // A dark-field "photograph" of the strip's fringes (1 mm cells, static) made from the run itself
   // with f = 7 N/mm/fringe: 480 x 600 pixels of 0.1 mm round the crack, intensity sin^2(pi N) with
   // a pixel of blur and +-8 grey levels of noise; calibrated from a wrong 9 N/mm/fringe.
@@ -164,6 +164,14 @@ TEST_F(FitCli, APhotoOfTheRunsFringesWithAWrongFringeConstantCalibratesItBackWit
                               "' --map -24,30,0.1 --calibrate fringe-constant --fringe-constant 9 --thickness 5.7", dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NEAR(number_after(r.out, "fringe constant that fits: "), 7.0, 0.07) << r.out;
+  // K from the photo alone: its dark and bright centre-lines 1-9 mm from the right-hand tip, orders
+  // counted on the run's fringes, fitted; against the run's K from J, the 2 % for a frame.
+  const auto k = run_headless("fit '" + run.string() + "' --photo '" + (dir_ / "photo.png").string() +
+                              "' --map -24,30,0.1 --radii 1,9 --tip-index 1 --fringe-constant 7 --thickness 5.7", dir_);
+  ASSERT_EQ(k.code, 0) << k.err;
+  EXPECT_GT(number_after(k.out, "read "), 1000) << k.out;
+  EXPECT_NEAR(number_after(k.out, "photo fit / run K_I = "), 1.0, 0.02) << k.out;
+  std::printf("%s", k.out.c_str());
   // compare: the centre-line overlay and the folded fringe orders agree with the photo.
   const auto c = run_headless("compare '" + run.string() + "' --photo '" + (dir_ / "photo.png").string() +
                               "' --frame last --map -24,30,0.1 --length-unit mm --fringes dark --fringe-constant 7 "

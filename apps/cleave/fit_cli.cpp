@@ -34,6 +34,10 @@ const char* kFitHelp = R"(Usage:
   cleave fit OUT --frame SPEC --points FILE --calibrate fringe-constant|load-scale [options]
                  the fringe constant (or load scale) that makes the run's fringes fit the points,
                  the other held fixed
+  cleave fit OUT --frame SPEC --photo IMG --map X0,Y0,S[,A] [--radii R0,R1] [tip] [options]
+                 K from a photograph: its fringe centre-lines (dark and bright lines) read as
+                 points R0..R1 from the tip, their orders counted on the run's fringes (scaled by
+                 the photo's calibration), and fitted
   cleave fit OUT --frame SPEC --photo IMG --map X0,Y0,S[,A] --calibrate fringe-constant|load-scale
                  the same against a photograph: the scale whose model fringes correlate best with
                  the photo's intensity (--fringes, --mask, --roi choose what is compared)
@@ -80,7 +84,7 @@ not determine); 3 the fit did not converge.
 struct FitArgs {
   std::optional<fs::path> run, points, out;
   std::string frame = "last";
-  std::optional<std::vector<double>> tip, sample, pixel_map, pixel_ref, roi;
+  std::optional<std::vector<double>> tip, sample, pixel_map, pixel_ref, roi, window;
   std::optional<fs::path> photo, mask;
   Polariscope mode = Polariscope::CircularDark;
   double angle_deg = 0, f_nmm = 0, t_mm = 0;
@@ -256,6 +260,44 @@ int calibrate_photo(const FitArgs& a, const ParticleFrame& frame, const Photoela
   return 0;
 }
 
+// The photo's fringe centre-lines as points (orders from the run, scaled by the photo's calibration),
+// fitted as digitised points are.
+int fit_photo(const FitArgs& a, const ParticleFrame& frame, const PhotoelasticSettings& ps, FringeFitOptions o, double L) {
+  if (!a.pixel_map) throw std::invalid_argument("--photo needs --map X0,Y0,S[,A] (where the photo lies on the model)");
+  const auto& mv = *a.pixel_map;
+  if (!(mv[2] > 0)) throw std::invalid_argument("--map: the length per pixel must be positive");
+  const PhotoMap map{mv[0] * L, mv[1] * L, mv[2] * L, mv.size() > 3 ? mv[3] * std::numbers::pi / 180 : 0.0};
+  Image photo, mask;
+  try {
+    photo = read_image(*a.photo);
+    if (a.mask) mask = read_image(*a.mask);
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(e.what());
+  }
+  std::optional<std::array<double, 4>> roi;
+  if (a.roi) roi = std::array<double, 4>{(*a.roi)[0] * L, (*a.roi)[1] * L, (*a.roi)[2] * L, (*a.roi)[3] * L};
+  std::optional<RunTip> rt;
+  if (!a.tip) {
+    rt = run_tip(*a.run, frame.time, a.crack, a.tip_index);
+    o.x0 = rt->x, o.y0 = rt->y, o.alpha = rt->alpha;
+  }
+  const PhotoField field = photo_field(frame, photo.width, photo.height, map);
+  const auto use = compared_pixels(field, map, a.mask ? &mask : nullptr, roi);
+  const PhotoCalibration c = calibrate_to_photo(photo, field, use, ps);
+  const double r0 = a.window ? (*a.window)[0] * L : 0.0, r1 = a.window ? (*a.window)[1] * L : 1e300;
+  const auto pts = extract_fringe_points(photo, field, map, use, ps, c.scale, o.x0, o.y0, r0, r1);
+  std::printf("read %zu fringe centre-line points from the photo (orders from the run's fringes x %.4f, the photo's "
+              "calibration; intensity correlation %.4f)\n", pts.size(), c.scale, c.ncc);
+  const auto r = fit_fringe_orders(pts, o);
+  print_fit(r, pts.size(), o);
+  print_irwin(pts, r, o);
+  if (rt)
+    std::printf("run: K_I %.6g MPa m^0.5 from J at t = %.6g s; photo fit / run K_I = %.4f\n", rt->KI * 1e-6, rt->time,
+                r.parameter("K_I").value / rt->KI);
+  if (a.out) write_csvs(*a.out, pts, r);
+  return 0;
+}
+
 int fit(const FitArgs& a) {
   if (!(a.f_nmm > 0)) throw std::invalid_argument("fit needs --fringe-constant F (N/mm/fringe, > 0)");
   if (!(a.t_mm > 0)) throw std::invalid_argument("fit needs --thickness MM (> 0)");
@@ -309,6 +351,7 @@ int fit(const FitArgs& a) {
     return 0;
   }
 
+  if (a.photo && !a.points && !a.sample) return fit_photo(a, frame, ps, o, L);
   std::optional<RunTip> rt;
   if (!a.tip) {
     rt = run_tip(*a.run, frame.time, a.crack, a.tip_index);
@@ -394,6 +437,7 @@ int fit_command(const std::vector<std::string>& args) {
       else if (s == "--pixel-map" || s == "--map") a.pixel_map = numbers(s, value(), 3, 4);
       else if (s == "--pixel-ref") a.pixel_ref = numbers(s, value(), 8, 8);
       else if (s == "--sample") a.sample = numbers(s, value(), 2, 2);
+      else if (s == "--radii") a.window = numbers(s, value(), 2, 2);
       else if (s == "--calibrate") a.calibrate = value();
       else if (s == "--smooth") {
         a.smooth = number(s, value());

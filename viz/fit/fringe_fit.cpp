@@ -259,15 +259,27 @@ std::vector<IrwinEstimate> irwin_two_point(const std::vector<FringePoint>& pts, 
     if (a < lo || a > hi || p.N <= 0) continue;
     loops[p.N][th > 0 ? 0 : 1].push_back({a, std::hypot(u, v)});
   }
+  // The points' outer radius: a loop whose farthest point reaches it is cut off, not closed.
+  double r_out = 0;
+  for (const auto& p : pts) r_out = std::max(r_out, std::hypot(p.x - x0, p.y - y0));
   std::vector<IrwinEstimate> out;
   for (auto& [N, sides] : loops) {
-    auto& side = sides[0].size() >= sides[1].size() ? sides[0] : sides[1];
+    auto& raw = sides[0].size() >= sides[1].size() ? sides[0] : sides[1];
+    // The loop's outer edge per 2 degrees of angle: a fringe read from a photo is a band of pixels.
+    std::map<int, std::pair<double, double>> bins;
+    for (const auto& [th, r] : raw) {
+      auto& b = bins[int(std::floor(th * 90 / std::numbers::pi))];
+      if (r > b.second) b = {th, r};
+    }
+    std::vector<std::pair<double, double>> side;
+    for (const auto& [k, b] : bins) side.push_back(b);
     if (side.size() < 3) continue;
     std::sort(side.begin(), side.end());
     std::size_t i = 0;
     for (std::size_t j = 1; j < side.size(); ++j)
       if (side[j].second > side[i].second) i = j;
     if (i == 0 || i + 1 == side.size()) continue;  // the apogee is not bracketed by the points
+    if (side[i].second >= 0.97 * r_out) continue;  // the loop leaves the points' range
     // Vertex of the parabola through the three points round the farthest.
     const double x1 = side[i - 1].first, x2 = side[i].first, x3 = side[i + 1].first;
     const double y1 = side[i - 1].second, y2 = side[i].second, y3 = side[i + 1].second;

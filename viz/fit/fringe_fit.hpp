@@ -76,8 +76,9 @@ struct IrwinEstimate {
 IrwinEstimate irwin_from_apogee(double N, double r_m, double theta_m, double fringe_constant, double thickness);
 
 // Irwin's estimate for every fringe order with at least three points at 20..160 degrees from the
-// crack line on one side: the apogee from a parabola r(theta) through the farthest point and its
-// two neighbours in angle. Orders without a usable loop (too few points, the apogee not between
+// crack line on one side: the loop's outer edge per 2 degrees of angle, and the apogee from a
+// parabola r(theta) through the farthest point and its two neighbours in angle. Loops whose farthest
+// point lies within 3 % of the points' outer radius are cut off and left out. Orders without a usable loop (too few points, the apogee not between
 // two points, or a vertex more than 5 % beyond the farthest point: a loop cut off) are left out.
 std::vector<IrwinEstimate> irwin_two_point(const std::vector<FringePoint>& points, double x0, double y0,
                                            double alpha, double fringe_constant, double thickness);

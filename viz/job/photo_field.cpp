@@ -190,4 +190,46 @@ PhotoCalibration calibrate_to_photo(const Image& photo, const PhotoField& m, con
   return r;
 }
 
+std::vector<FringePoint> extract_fringe_points(const Image& photo, const PhotoField& m, const PhotoMap& map,
+                                               const std::vector<uint8_t>& use, const PhotoelasticSettings& s, double scale,
+                                               double x0, double y0, double r0, double r1, std::size_t max_points) {
+  const int W = m.width, H = m.height;
+  std::vector<double> I(use.size(), std::numeric_limits<double>::quiet_NaN()), on;
+  for (std::size_t t = 0; t < use.size(); ++t)
+    if (use[t]) on.push_back(I[t] = luminance(&photo.rgb[3 * t]));
+  if (on.size() < 16) throw std::invalid_argument("fewer than 16 photo pixels on the bodies: check --map, --mask and --roi");
+  std::sort(on.begin(), on.end());
+  const double lo = on[on.size() / 100], hi = on[on.size() - 1 - on.size() / 100];
+  const bool light = s.mode == Polariscope::CircularLight;
+  const double k = scale * s.thickness / effective_fringe_constant(s);
+  auto at = [&](int i, int j) { return I[std::size_t(j) * W + i]; };
+  std::vector<FringePoint> pts;
+  for (int j = 1; j + 1 < H; ++j)
+    for (int i = 1; i + 1 < W; ++i) {
+      const double c = at(i, j);
+      if (!std::isfinite(c)) continue;
+      const double l = at(i - 1, j), r = at(i + 1, j), u = at(i, j - 1), d = at(i, j + 1);
+      if (!std::isfinite(l) || !std::isfinite(r) || !std::isfinite(u) || !std::isfinite(d)) continue;
+      const double n = hi > lo ? (c - lo) / (hi - lo) : 0.5;
+      const bool dark = n <= 0.25 && ((c <= l && c <= r && (c < l || c < r)) || (c <= u && c <= d && (c < u || c < d)));
+      const bool bright = n >= 0.75 && ((c >= l && c >= r && (c > l || c > r)) || (c >= u && c >= d && (c > u || c > d)));
+      if (!dark && !bright) continue;
+      const auto p = model_of(map, i, j);
+      const double rr = std::hypot(p[0] - x0, p[1] - y0);
+      if (rr < r0 || rr > r1) continue;
+      // Whole orders on dark lines of a dark field (bright lines of a light one), half orders on the others.
+      const bool whole = dark != light;
+      const double N = k * m.diff[std::size_t(j) * W + i], order = whole ? std::round(N) : std::round(N - 0.5) + 0.5;
+      if (std::fabs(N - order) > 0.3 || order < 0) continue;
+      pts.push_back({p[0], p[1], order});
+    }
+  if (pts.size() > max_points) {
+    std::vector<FringePoint> thin;
+    const double step = double(pts.size()) / double(max_points);
+    for (std::size_t q = 0; q < max_points; ++q) thin.push_back(pts[std::size_t(q * step)]);
+    pts.swap(thin);
+  }
+  return pts;
+}
+
 }  // namespace cleave::viz

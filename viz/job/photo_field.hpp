@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "viz/fit/fringe_fit.hpp"
 #include "viz/job/render_job.hpp"
 #include "viz/optics/photoelastic.hpp"
 #include "viz/render/image.hpp"
@@ -53,5 +54,16 @@ struct PhotoCalibration {
 };
 PhotoCalibration calibrate_to_photo(const Image& photo, const PhotoField& m, const std::vector<uint8_t>& use,
                                     const PhotoelasticSettings& s);
+
+// Fringe centre-lines read from a photo as fringe-order points (model coordinates) for the fit: the
+// darkest and brightest lines of the photo's normalised intensity (a pixel at most 0.25 / at least
+// 0.75 that is a minimum / maximum across its row or its column), between r0 and r1 from the tip
+// (x0, y0). The dark lines of a dark-field picture are whole orders, its bright lines half orders (the
+// other way round in a light field); which whole or half order each is, the model tells: the nearest
+// one to `scale` x the model's N there, kept only where the model is within 0.3 of it. At most
+// `max_points`, evenly thinned.
+std::vector<FringePoint> extract_fringe_points(const Image& photo, const PhotoField& m, const PhotoMap& map,
+                                               const std::vector<uint8_t>& use, const PhotoelasticSettings& s, double scale,
+                                               double x0, double y0, double r0, double r1, std::size_t max_points = 3000);
 
 }  // namespace cleave::viz
