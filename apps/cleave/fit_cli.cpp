@@ -237,23 +237,38 @@ void print_scale(const FitArgs& a, double scale, double se) {
                 "elastic static run)\n", scale, se > 0 ? format_se(se).c_str() : "");
 }
 
-int calibrate_photo(const FitArgs& a, const ParticleFrame& frame, const PhotoelasticSettings& ps, double L) {
+// The photo against the run's frame: where it lies (--map), the pixels compared (--mask, --roi), and
+// the scale that fits its fringes.
+struct PhotoInput {
+  PhotoMap map;
+  Image photo;
+  PhotoField field;
+  std::vector<uint8_t> use;
+  PhotoCalibration calibration;
+};
+PhotoInput photo_input(const FitArgs& a, const ParticleFrame& frame, const PhotoelasticSettings& ps, double L) {
   if (!a.pixel_map) throw std::invalid_argument("--photo needs --map X0,Y0,S[,A] (where the photo lies on the model)");
   const auto& m = *a.pixel_map;
   if (!(m[2] > 0)) throw std::invalid_argument("--map: the length per pixel must be positive");
-  const PhotoMap map{m[0] * L, m[1] * L, m[2] * L, m.size() > 3 ? m[3] * std::numbers::pi / 180 : 0.0};
-  Image photo, mask;
+  PhotoInput in;
+  in.map = {m[0] * L, m[1] * L, m[2] * L, m.size() > 3 ? m[3] * std::numbers::pi / 180 : 0.0};
+  Image mask;
   try {
-    photo = read_image(*a.photo);
+    in.photo = read_image(*a.photo);
     if (a.mask) mask = read_image(*a.mask);
   } catch (const std::runtime_error& e) {
     throw std::invalid_argument(e.what());
   }
   std::optional<std::array<double, 4>> roi;
   if (a.roi) roi = std::array<double, 4>{(*a.roi)[0] * L, (*a.roi)[1] * L, (*a.roi)[2] * L, (*a.roi)[3] * L};
-  const PhotoField field = photo_field(frame, photo.width, photo.height, map);
-  const auto use = compared_pixels(field, map, a.mask ? &mask : nullptr, roi);
-  const PhotoCalibration c = calibrate_to_photo(photo, field, use, ps);
+  in.field = photo_field(frame, in.photo.width, in.photo.height, in.map);
+  in.use = compared_pixels(in.field, in.map, a.mask ? &mask : nullptr, roi);
+  in.calibration = calibrate_to_photo(in.photo, in.field, in.use, ps);
+  return in;
+}
+
+int calibrate_photo(const FitArgs& a, const ParticleFrame& frame, const PhotoelasticSettings& ps, double L) {
+  const PhotoCalibration c = photo_input(a, frame, ps, L).calibration;
   std::printf("calibration on %zu photo pixels at t = %.6g s: the photo's fringes are those of the run's stresses x "
               "%.5f (intensity correlation %.4f there, %.4f at 1)\n", c.pixels, frame.time, c.scale, c.ncc, c.ncc_at_one);
   print_scale(a, c.scale, 0.0);
@@ -263,31 +278,16 @@ int calibrate_photo(const FitArgs& a, const ParticleFrame& frame, const Photoela
 // The photo's fringe centre-lines as points (orders from the run, scaled by the photo's calibration),
 // fitted as digitised points are.
 int fit_photo(const FitArgs& a, const ParticleFrame& frame, const PhotoelasticSettings& ps, FringeFitOptions o, double L) {
-  if (!a.pixel_map) throw std::invalid_argument("--photo needs --map X0,Y0,S[,A] (where the photo lies on the model)");
-  const auto& mv = *a.pixel_map;
-  if (!(mv[2] > 0)) throw std::invalid_argument("--map: the length per pixel must be positive");
-  const PhotoMap map{mv[0] * L, mv[1] * L, mv[2] * L, mv.size() > 3 ? mv[3] * std::numbers::pi / 180 : 0.0};
-  Image photo, mask;
-  try {
-    photo = read_image(*a.photo);
-    if (a.mask) mask = read_image(*a.mask);
-  } catch (const std::runtime_error& e) {
-    throw std::invalid_argument(e.what());
-  }
-  std::optional<std::array<double, 4>> roi;
-  if (a.roi) roi = std::array<double, 4>{(*a.roi)[0] * L, (*a.roi)[1] * L, (*a.roi)[2] * L, (*a.roi)[3] * L};
+  const PhotoInput in = photo_input(a, frame, ps, L);
   std::optional<RunTip> rt;
   if (!a.tip) {
     rt = run_tip(*a.run, frame.time, a.crack, a.tip_index);
     o.x0 = rt->x, o.y0 = rt->y, o.alpha = rt->alpha;
   }
-  const PhotoField field = photo_field(frame, photo.width, photo.height, map);
-  const auto use = compared_pixels(field, map, a.mask ? &mask : nullptr, roi);
-  const PhotoCalibration c = calibrate_to_photo(photo, field, use, ps);
   const double r0 = a.window ? (*a.window)[0] * L : 0.0, r1 = a.window ? (*a.window)[1] * L : 1e300;
-  const auto pts = extract_fringe_points(photo, field, map, use, ps, c.scale, o.x0, o.y0, r0, r1);
+  const auto pts = extract_fringe_points(in.photo, in.field, in.map, in.use, ps, in.calibration.scale, o.x0, o.y0, r0, r1);
   std::printf("read %zu fringe centre-line points from the photo (orders from the run's fringes x %.4f, the photo's "
-              "calibration; intensity correlation %.4f)\n", pts.size(), c.scale, c.ncc);
+              "calibration; intensity correlation %.4f)\n", pts.size(), in.calibration.scale, in.calibration.ncc);
   const auto r = fit_fringe_orders(pts, o);
   print_fit(r, pts.size(), o);
   print_irwin(pts, r, o);
