@@ -102,6 +102,15 @@ TEST_F(FitCli, BadInputExitsWith2AndTheReason) {
                    "' --calibrate load-scale --fringe-constant 7 --thickness 5.7", dir_);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("on the bodies"), std::string::npos) << r.err;
+  // A photo that cannot be read.
+  for (const std::string cmd : {"fit '" + (dir_ / "tiny").string() + "' --photo '" + (dir_ / "none.png").string() +
+                                    "' --map 0,0.05,0.001 --calibrate load-scale --fringe-constant 7 --thickness 5.7",
+                                "compare '" + (dir_ / "tiny").string() + "' --photo '" + (dir_ / "none.png").string() +
+                                    "' --frame last --map 0,0.05,0.001 --fringes dark --fringe-constant 7"}) {
+    r = run_headless(cmd, dir_);
+    EXPECT_EQ(r.code, 2) << cmd;
+    EXPECT_NE(r.err.find("none.png"), std::string::npos) << r.err;
+  }
 }
 
 TEST_F(FitCli, PointsInPhotoPixelsThroughAMapOrTwoReferencePixelsGiveTheFitOfTheirModelPositions) {

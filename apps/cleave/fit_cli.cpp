@@ -102,18 +102,6 @@ double unit_factor(const std::string& u) {
   throw std::invalid_argument("--length-unit must be m, mm, cm or um, not '" + u + "'");
 }
 
-// The run's scene length unit (run.json "length_unit"), m for runs written before it was recorded.
-std::string run_length_unit(const fs::path& dir) {
-  std::ifstream in(dir / "run.json");
-  if (!in) return "m";
-  try {
-    const auto j = nlohmann::json::parse(in);
-    return j.value("length_unit", std::string("m"));
-  } catch (const std::exception&) {
-    return "m";
-  }
-}
-
 // Points file to model coordinates (m): lengths in the unit L, or photo pixels through a map.
 std::vector<FringePoint> model_points(const FitArgs& a, double L) {
   std::vector<FringePoint> pts;

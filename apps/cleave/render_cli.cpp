@@ -31,7 +31,9 @@ Frames and image:
   --frame SPEC         the same, for compare (one frame)
   --size WxH           image size in pixels (default 1280x720)
   --images DIR         where PNGs go (default OUT/render)
-  --length-unit U      unit of --roi, --map, --cut-plane, --slice and --points: m (default), mm, cm, um
+  --length-unit U      unit of --roi, --map, --cut-plane, --slice, --view and --points: m, mm, cm,
+                       um (default: the unit of the run's scene, run.json "length_unit"; m for runs
+                       written before it was recorded)
   --roi X0,Y0,X1,Y1    region of interest in model coordinates
   --zoom Z             zoom about the window centre (default 1)
   --background C       white (default) | black | gray | R,G,B (0-1)
@@ -113,6 +115,10 @@ std::vector<int> node_indices(const std::string& opt, const std::string& s) {
   return v;
 }
 
+double length_factor(const std::string& u) {
+  return u == "m" ? 1.0 : u == "mm" ? 1e-3 : u == "cm" ? 1e-2 : u == "um" ? 1e-6 : -1.0;
+}
+
 }  // namespace
 
 int viz_command(const std::vector<std::string>& args) {
@@ -125,6 +131,7 @@ int viz_command(const std::vector<std::string>& args) {
   RenderOptions o;
   o.series = args[1];
   double L = 1.0;
+  bool unit_given = false;
   std::vector<std::pair<std::string, std::string>> coords;  // options whose numbers use --length-unit
   std::optional<std::string> photo, points, map, other_run, mask;
   std::string out_prefix;
@@ -157,8 +164,9 @@ int viz_command(const std::vector<std::string>& args) {
       } else if (a == "--images") o.image_dir = value();
       else if (a == "--length-unit") {
         const std::string u = value();
-        L = u == "m" ? 1.0 : u == "mm" ? 1e-3 : u == "cm" ? 1e-2 : u == "um" ? 1e-6 : -1.0;
+        L = length_factor(u);
         if (L < 0) throw std::invalid_argument("--length-unit must be m, mm, cm or um");
+        unit_given = true;
       } else if (a == "--roi" || a == "--cut-plane") coords.push_back({a, value()});
       else if (a == "--zoom") {
         o.zoom = number(a, value());
@@ -238,6 +246,9 @@ int viz_command(const std::vector<std::string>& args) {
       else if (a == "--out") out_prefix = value();
       else throw std::invalid_argument("unknown option '" + a + "'");
     }
+    // Without --length-unit: the unit the run's scene was written in (run.json), m for older runs.
+    if (!unit_given) L = std::max(0.0, length_factor(run_length_unit(o.series)));
+    if (!(L > 0)) L = 1.0;
     for (const auto& [opt, v] : coords) {
       if (opt == "--roi") {
         const auto r = numbers(opt, v, 4, 4);

@@ -60,9 +60,17 @@ double fringe_order_rms(const ParticleFrame& f, const PhotoelasticSettings& s, c
 CompareResult compare_with_photo(const RenderOptions& o, const fs::path& photo_file, const PhotoMap& map,
                                  const std::optional<std::vector<std::array<double, 3>>>& points,
                                  const fs::path& out_prefix, const std::optional<fs::path>& mask_file) {
-  const Image photo = read_image(photo_file);
+  // A photo or mask that cannot be read is bad input (exit 2), not a failure of the comparison.
+  auto read_input = [](const fs::path& file) {
+    try {
+      return read_image(file);
+    } catch (const std::runtime_error& e) {
+      throw std::invalid_argument(e.what());
+    }
+  };
+  const Image photo = read_input(photo_file);
   std::optional<Image> mask_image;
-  if (mask_file) mask_image = read_image(*mask_file);
+  if (mask_file) mask_image = read_input(*mask_file);
   const auto entries = read_series(o.series);
   const auto sel = select_frames(entries, o.frames);
   if (sel.size() != 1) throw std::invalid_argument("compare needs exactly one frame (--frame time:T, last, index:I)");

@@ -1,5 +1,8 @@
 #include "viz/job/render_job.hpp"
 
+#include <fstream>
+#include <nlohmann/json.hpp>
+
 #include <vtkDataArray.h>
 #include <vtkPointData.h>
 #include <vtkNew.h>
@@ -61,6 +64,17 @@ Raster stress_raster(const ParticleFrame& f, const View& v, const RasterOptions&
     per[3 * p + 2] = s[6 * p + 3];
   }
   return rasterize_2d(f, v, per, 3, ro);
+}
+
+std::string run_length_unit(const fs::path& dir_or_pvd) {
+  const fs::path dir = fs::is_directory(dir_or_pvd) ? dir_or_pvd : dir_or_pvd.parent_path();
+  std::ifstream in(dir / "run.json");
+  if (!in) return "m";
+  try {
+    return nlohmann::json::parse(in).value("length_unit", std::string("m"));
+  } catch (const std::exception&) {
+    return "m";
+  }
 }
 
 ParticleFrame drawn_frame(const ParticleFrame& frame, const RenderOptions& o) {

@@ -118,6 +118,10 @@ struct RunComparison {
 };
 RunComparison compare_runs(const RenderOptions& a, const std::filesystem::path& b_series,
                            const std::filesystem::path& difference_png = {});
+// The length unit of the scene a run was written from (OUT/run.json "length_unit", given the run's
+// folder or its .pvd): the default unit of the commands' coordinates (--roi, --map, --points, ...);
+// "m" for runs written before it was recorded, or without a run.json.
+std::string run_length_unit(const std::filesystem::path& dir_or_pvd);
 // Points file: "x y N" per line (model units m, fringe order); '#' comments.
 std::vector<std::array<double, 3>> read_fringe_points(const std::filesystem::path&);
 // RMS of (model N at (x, y) - N) over the points that fall on the body.
