@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "libmpm/core/run_settings.hpp"
 #include "libmpm/core/types.hpp"
 
 namespace cleave {
@@ -19,6 +20,14 @@ inline std::string format(const char* f, auto... args) {
 
 inline const char* analysis_name(Analysis a) {
   return a == Analysis::PlaneStress ? "plane stress" : a == Analysis::PlaneStrain ? "plane strain" : "solid";
+}
+
+// The check line of a static scene (dynamic relaxation, method/relaxation.hpp); none otherwise.
+inline void describe_static(const RunSettings& m, std::vector<std::string>& out) {
+  if (m.static_tolerance > 0)
+    out.push_back(format("static: dynamic relaxation (damping near critical for the lowest mode, from the Rayleigh "
+                         "quotient), ends when the strain energy settles to %.3g; time.end %.6g s is the latest, the "
+                         "steps above the most", m.static_tolerance, m.end_time));
 }
 
 // "(x, y) m"

@@ -47,6 +47,7 @@ class MpmMethod final : public Method<Dim> {
     out.push_back(format("method: MPM, %s, %s; dt = %.6g s (stable limit %.6g s), %ld steps to %.6g s",
                          m.shape_function == ShapeFunctionKind::UGimp ? "uGIMP" : "linear", scheme_name(m.scheme), m.dt,
                          m.stable_dt, static_cast<long>(std::ceil(m.end_time / m.dt - 1e-9)), m.end_time));
+    describe_static(m, out);
     for (const auto& c : m.cracks)
       out.push_back(format("crack '%s': %s, contact %s%s, %s detection", c.name.c_str(), crack_size(c).c_str(),
                            crack::contact_law_name(c.contact_law),

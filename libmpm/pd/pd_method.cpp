@@ -83,7 +83,7 @@ class PdMethod final : public Method<Dim> {
   std::vector<std::string> describe() const override {
     const auto& m = m_;
     const auto& k = m.materials[0].k;
-    return {format("%s%dD %s, peridynamics: %zu points in %zu bodies, %zu bonds (%zu removed by pre-cracks)",
+    std::vector<std::string> out = {format("%s%dD %s, peridynamics: %zu points in %zu bodies, %zu bonds (%zu removed by pre-cracks)",
                    m.title.empty() ? "" : (m.title + ": ").c_str(), Dim,
                    analysis_name(m.analysis),
                    m.points.size(), m.bodies.size(), m.bond_count, m.precrack_bonds),
@@ -95,6 +95,8 @@ class PdMethod final : public Method<Dim> {
                    "(%zu trackers)",
                    m.output.interval, m.output.fields.size(), m.output.global_interval, m.output.tip_interval,
                    m.trackers.size())};
+    describe_static(m, out);
+    return out;
   }
 
   StepProblem step() override {
