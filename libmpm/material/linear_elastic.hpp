@@ -68,8 +68,9 @@ class LinearElastic final : public Material<Dim> {
   }
 
   double wave_speed() const override {
-    // Dilatational speed; the plane-stress value is smaller, so this bound is safe for every analysis.
-    const double M = E_ * (1.0 - nu_) / ((1.0 + nu_) * (1.0 - 2.0 * nu_));
+    // Dilatational speed of the analysis: a thin plate's in-plane P-wave modulus is E / (1 - nu^2), lower than
+    // the solid's (for nu = 0.37 the plane-strain bound took 24 % more steps than stability needs).
+    const double M = plane_stress_ ? E_ / (1.0 - nu_ * nu_) : E_ * (1.0 - nu_) / ((1.0 + nu_) * (1.0 - 2.0 * nu_));
     return std::sqrt(M / this->density_);
   }
 
