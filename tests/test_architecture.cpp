@@ -27,6 +27,7 @@ const std::map<std::string, std::set<std::string>> kShared = {
     {"io", {"core", "crack"}},
     {"scene", {"core", "geometry"}},
     {"method", {"core", "io", "scene"}},
+    {"reference", {"core"}},
 };
 
 struct Include {
@@ -94,5 +95,15 @@ TEST(Architecture, TheRendererKnowsNoMethod) {
   for (const auto& [file, target] : includes_under("viz")) {
     const std::string to = module_of(target);
     EXPECT_TRUE(to.empty() || to == "io" || to == "core") << file << " includes " << target;
+  }
+}
+
+// A study runs scenes as `cleave run` does and reads what the runs wrote: it may read scenes and closed
+// forms, and knows no method.
+TEST(Architecture, TheStudyKnowsNoMethod) {
+  for (const auto& [file, target] : includes_under("study")) {
+    const std::string to = module_of(target);
+    EXPECT_TRUE(to.empty() || to == "core" || to == "io" || to == "scene" || to == "reference")
+        << file << " includes " << target;
   }
 }

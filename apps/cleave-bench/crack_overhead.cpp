@@ -6,7 +6,10 @@
 // range of the ratios. Wall-clock time is the figure; printed beside it are the ratio of the process
 // CPU times (with one thread, insensitive to time slices lost to other processes on a shared
 // machine) and the ratio of the fastest block of each (the least disturbed by other processes).
-// Usage: cleave-bench-crack [--case dcb|rod3d|fronts] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]
+// Usage: cleave-bench-crack [--case dcb|rod3d|fronts|costs] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]
+// --case costs: what `cleave run` reports each part costs (core/part_costs.hpp), the DCB (2 mm cells
+// unless --cell) run to its end with its crack and J/K at the tip, and without the crack; exits 1
+// unless the uncracked run's crack fields, contact and J/K parts recorded no scope and no time.
 // --case fronts: the cost of evaluating J and K at every front node (crack_tips in 3D, issue 17) against
 // one step, the rod at 3 mm cells (480 000 particles) stepped 40 steps into its loading, then a step and
 // an evaluation alternately (which first alternates too), R = 10 repetitions.
@@ -19,16 +22,19 @@
 // load hits both: on the shared 2-core VM, --null read -3.7 ... +3.5 % with blocks of 10 steps x 30
 // and -0.5 ... +0.3 % with 2 steps x 150 (docs/performance.md).
 #include <omp.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "libmpm/method/run_scene.hpp"
 #include "libmpm/mpm/mpm_scene.hpp"
 #include "libmpm/mpm/mpm_step.hpp"
 #include "libmpm/mpm/step_timers.hpp"
@@ -113,6 +119,44 @@ int bench_fronts(const nlohmann::json& scene, int reps) {
 template <int Dim>
 int bench(const char* what, const nlohmann::json& scene, int steps, int reps, const std::string& only, bool null_test);
 
+// --case costs: the parts' costs of a cracked run beside an uncracked one; the uncracked one must
+// pay nothing for cracks (no scope entered, no time).
+int bench_costs(const nlohmann::json& cracked_scene) {
+  nlohmann::json uncracked_scene = cracked_scene;
+  uncracked_scene.erase("cracks");
+  uncracked_scene.erase("crack_tips");
+  const auto run = [](const nlohmann::json& scene, const std::string& tag) {
+    RunOptions opt;
+    opt.out = std::filesystem::temp_directory_path() / ("cleave-bench-costs-" + tag + "-" + std::to_string(getpid()));
+    opt.handle_signals = false;
+    const RunSummary s = run_scene(scene, {}, opt);
+    std::filesystem::remove_all(opt.out);
+    return s;
+  };
+  const RunSummary a = run(cracked_scene, "cracked"), b = run(uncracked_scene, "uncracked");
+  std::printf("DCB, %ld steps, %d threads: seconds, share of the wall time, scopes entered\n", a.steps,
+              omp_get_max_threads());
+  std::printf("  %-13s %34s %34s\n", "part", "cracked, J/K at the tip", "uncracked");
+  const auto cell = [](const costs::Totals& t, int p) {
+    char c[64];
+    std::snprintf(c, sizeof c, "%9.3f s %5.1f %% %10ld", t.seconds[p], 100 * t.seconds[p] / t.wall_s, t.calls[p]);
+    return std::string(c);
+  };
+  for (int p = 0; p < costs::kParts; ++p)
+    if (a.costs.on(p) || b.costs.on(p))
+      std::printf("  %-13s %34s %34s\n", costs::name(p), cell(a.costs, p).c_str(), cell(b.costs, p).c_str());
+  std::printf("  %-13s %11.3f s %22s %11.3f s\n", "wall", a.costs.wall_s, "", b.costs.wall_s);
+  int failed = 0;
+  for (int p : {costs::CrackFields, costs::Contact, costs::TipParameters})
+    if (b.costs.calls[p] != 0 || b.costs.seconds[p] != 0.0) {
+      std::printf("FAIL: the uncracked run paid for %s: %ld scopes, %.6f s\n", costs::name(p), b.costs.calls[p],
+                  b.costs.seconds[p]);
+      failed = 1;
+    }
+  if (!failed) std::printf("uncracked run: crack fields, contact and J/K: 0 scopes, 0 s (OK)\n");
+  return failed;
+}
+
 int main(int argc, char** argv) {
   double cell = 0;
   int steps = 2, reps = 0;
@@ -128,8 +172,9 @@ int main(int argc, char** argv) {
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else if (a == "--null") null_test = true;
     else ok = false;
-    if (!ok || (!only.empty() && only != "cracked" && only != "uncracked") || (which != "dcb" && which != "rod3d" && which != "fronts")) {
-      std::fprintf(stderr, "usage: cleave-bench-crack [--case dcb|rod3d|fronts] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]\n");
+    if (!ok || (!only.empty() && only != "cracked" && only != "uncracked") ||
+        (which != "dcb" && which != "rod3d" && which != "fronts" && which != "costs")) {
+      std::fprintf(stderr, "usage: cleave-bench-crack [--case dcb|rod3d|fronts|costs] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]\n");
       return a == "--help" ? 0 : 2;
     }
   }
@@ -146,6 +191,11 @@ int main(int argc, char** argv) {
     return bench<3>("rod (3D, elliptical crack)", scene, steps, reps > 0 ? reps : 20, only, null_test);
   }
   nlohmann::json scene = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");
+  if (which == "costs") {
+    if (cell > 0) scene["resolution"] = cell;
+    scene["crack_tips"] = nlohmann::json::object();  // J and K at the tip, at every global.csv row
+    return bench_costs(scene);
+  }
   scene["resolution"] = cell > 0 ? cell : 0.25;  // the scene's one discretisation key (scene units)
   scene["mpm"]["shape_function"] = "ugimp";
   scene["cracks"][0]["segment_length"] = scene["resolution"];

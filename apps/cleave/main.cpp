@@ -11,6 +11,7 @@
 
 #include "apps/cleave/progress.hpp"
 #include "apps/cleave/render_cli.hpp"
+#include "apps/cleave/study_cli.hpp"
 #include "libmpm/core/error.hpp"
 #include "libmpm/core/resources.hpp"
 #include "libmpm/core/thread_governor.hpp"
@@ -34,6 +35,8 @@ Usage:
   cleave plot OUT                   energy and J/K plots
   cleave fit [OUT] --points FILE ...  K_I, K_II, T from fringe orders; calibration against a run
                                     (cleave fit --help)
+  cleave study STUDY.json [--out DIR] runs a speed-accuracy study: the runs, their errors and
+                                    costs, work-precision diagrams (cleave study --help)
   cleave --help | --version         (cleave render --help: the renderer's options)
 
 Commands:
@@ -46,10 +49,12 @@ Commands:
                                                    crack_tips)
             checkpoint.bin                         restart state at the last frame (or stop)
             run.json                               status: running | complete | stopped |
-                                                   aborted; step, time, frames, ETA
+                                                   aborted; step, time, frames, ETA; at
+                                                   the end the cost of each part (costs)
             run.lock                               held while a run goes (one run per DIR)
-          Shows progress (step, simulated time, wall time, ETA) on stderr and a one-line
-          summary on stdout.
+          Shows progress (step, simulated time, wall time, ETA) on stderr, and on stdout a
+          one-line summary and a cost line: each part the scene switched on (step, crack
+          fields, contact, J/K, tip tracking, output) as a share of the wall time.
   check   Validate SCENE without running it: every bad value is reported with its key
           path and reason. Prints what the run would build.
 
@@ -63,8 +68,9 @@ Options:
   --force        run even when the estimates say it will not fit: more memory than the
                  machine has available, or more output than DIR's disk has free
   --set K=V      override one scene value before validation; K is a key path as in error
-                 messages (mpm.stress_update, bodies[1].velocity), V is JSON or a plain string:
-                 --set mpm.stress_update=USL --set resolution=1 --set 'time.end=2.5'
+                 messages (mpm.stress_update, bodies[1].velocity), V is JSON or a plain string;
+                 null removes the key: --set mpm.stress_update=USL --set resolution=1
+                 --set 'time.end=2.5' --set damping=null
   --help         this text
   --version      program version
 
@@ -101,6 +107,11 @@ int run_scene_command(const nlohmann::json& scene, const Args& a) {
     auto lines = method.describe();
     const RunEstimate est = method.estimate();
     for (const auto& l : describe_estimate(est, out)) lines.push_back(l);
+    for (const auto& [file, columns] : method.tables()) {  // what plot and study can read
+      std::string l = "table " + file + ":";
+      for (const auto& c : columns) l += " " + c;
+      lines.push_back(l);
+    }
     for (std::size_t i = 0; i < lines.size(); ++i) std::printf("%s%s\n", i ? "" : "scene OK: ", lines[i].c_str());
     try {  // check writes nothing, so a disk too small for the run is a warning here
       check_disk(est, out);
@@ -139,6 +150,7 @@ int run_scene_command(const nlohmann::json& scene, const Args& a) {
     if (warnings > 5) std::fprintf(stderr, "cleave: %ld warnings in all (5 shown)\n", warnings);
     const auto [work, unit] = method.work_per_step();
     std::printf("%s\n", app::summary_line(s, work, unit, omp_get_max_threads(), out.string()).c_str());
+    std::printf("%s\n", app::cost_line(s.costs).c_str());  // what each part the scene switched on cost
     return kOk;
   } catch (const RunStopped& e) {
     printer.finish();
@@ -164,6 +176,7 @@ int main(int argc, char** argv) {
   if (!argv_s.empty() && (argv_s[0] == "render" || argv_s[0] == "compare" || argv_s[0] == "plot"))
     return app::viz_command(argv_s);
   if (!argv_s.empty() && argv_s[0] == "fit") return app::fit_command(argv_s);
+  if (!argv_s.empty() && argv_s[0] == "study") return app::study_command(argv_s);
   Args a;
   a.argv.assign(argv, argv + argc);
   for (std::size_t i = 0; i < argv_s.size(); ++i) {

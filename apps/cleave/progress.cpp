@@ -51,6 +51,19 @@ std::string summary_line(const RunSummary& s, double work, const std::string& un
   return b;
 }
 
+std::string cost_line(const costs::Totals& t) {
+  std::string line = "cost:";
+  char b[96];
+  const char* sep = " ";
+  for (int p = 0; p < costs::kParts; ++p) {
+    if (!t.on(p)) continue;
+    std::snprintf(b, sizeof b, "%s%s %.1f %%", sep, costs::name(p), t.wall_s > 0 ? 100.0 * t.seconds[p] / t.wall_s : 0.0);
+    line += b;
+    sep = ", ";
+  }
+  return line + " of " + format_seconds(t.wall_s) + " wall";
+}
+
 std::string shell_command(const std::vector<std::string>& args, bool with_resume) {
   std::string cmd;
   auto add = [&](const std::string& a) {

@@ -5,7 +5,8 @@
 // a second with step, time, frames and ETA), stopped on request (SIGINT/SIGTERM: a checkpoint at
 // that step, and the command that resumes), or aborted by a detected problem or a failed write.
 // `--resume` continues from the last checkpoint bit for bit. One run at a time per directory
-// (io/output_lock.hpp).
+// (io/output_lock.hpp). The last run.json (complete, stopped, aborted) records what each part of
+// the run cost in wall time ("costs", core/part_costs.hpp).
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "libmpm/core/part_costs.hpp"
 #include "libmpm/method/method.hpp"
 
 namespace cleave {
@@ -51,6 +53,9 @@ struct RunSummary {
   bool resumed = false;
   long first_step = 0;  // the step this call started from (the checkpoint's when resumed)
   double max_energy_drift = 0.0;  // max |E - E0| / max(E0, max E) over global rows (no loads/damping)
+  // What each part of this call cost (core/part_costs.hpp; a resumed run: the resumed part only), up
+  // to the last run.json, which records the same as "costs".
+  costs::Totals costs;
 
   // Takes the total energy of one global row: E0 is the first, the drift is folded into
   // max_energy_drift.

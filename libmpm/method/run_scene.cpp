@@ -27,6 +27,15 @@ SceneMethod SceneMethod::build(const nlohmann::json& scene) {
 const char* SceneMethod::name() const { return m2_ ? m2_->name() : m3_->name(); }
 const RunSettings& SceneMethod::settings() const { return m2_ ? m2_->settings() : m3_->settings(); }
 std::vector<std::string> SceneMethod::describe() const { return m2_ ? m2_->describe() : m3_->describe(); }
+std::vector<std::pair<std::string, std::vector<std::string>>> SceneMethod::tables() const {
+  auto of = [](const auto& m) {
+    std::vector<std::pair<std::string, std::vector<std::string>>> t{{"global.csv", m.global_columns()}};
+    if (auto c = m.tip_columns(); !c.empty()) t.push_back({m.tip_file(), std::move(c)});
+    return t;
+  };
+  return m2_ ? of(*m2_) : of(*m3_);
+}
+
 std::pair<double, std::string> SceneMethod::work_per_step() const {
   return m2_ ? m2_->work_per_step() : m3_->work_per_step();
 }

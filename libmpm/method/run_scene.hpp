@@ -24,6 +24,9 @@ class SceneMethod {
   const RunSettings& settings() const;
   std::vector<std::string> describe() const;
   std::pair<double, std::string> work_per_step() const;
+  // The tables the run writes and their columns: global.csv always, the tip file (crack_tips.csv,
+  // 3D fronts crack_fronts.csv) when the scene asks for tip output.
+  std::vector<std::pair<std::string, std::vector<std::string>>> tables() const;
   // Points, steps, memory and output of the run (method/run_estimate.hpp).
   RunEstimate estimate();
   // Runs with the one run loop; opt.scene_hash is set to the scene's. First refuses (SceneError,

@@ -28,6 +28,19 @@
 // class they changed the shape of the inlined code, and with it which multiplies GCC fused into
 // adds and the last bits of the force pass (grid_cells.hpp). One-line accessors, which fold into
 // plain memory references, and the crack-wide steps come from the layers.
+//
+// The run's costs (core/part_costs.hpp): prepare_index() and prepare_fields() are charged to
+// "crack fields", contact() (Tasks 2, 4 and 6c) to "contact", each by a pair of out-of-line calls
+// (costs::enter/leave) inside the function. All else the crack module does counts as the step: the
+// near particles' paths inside the particle passes and the near flags of the strip-order pass (they
+// run in the step's parallel loops), the extra fields' grid tasks and crack motion (Task 7). Those
+// are the places where the calls leave this translation unit's machine code as it was: pairs in the
+// stepper around its calls into this class, or one pair in, around or beside move_cracks (tried: in
+// the stepper, in the layer, in a wrapper here, in 2D only), changed what GCC inlines elsewhere in
+// mpm_step.cpp and with it which multiplies it fuses into adds (the last bits of the 2D DCB's
+// global.csv, or of a 3D uGIMP crack_fronts.csv). (Checked on 2d3261d; the 3D uGIMP front
+// evaluation sits at such a threshold for any edit of the unit: docs/performance.md, "What each
+// part costs".)
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -35,6 +48,7 @@
 #include <utility>
 #include <vector>
 
+#include "libmpm/core/part_costs.hpp"
 #include "libmpm/crack/crack2d.hpp"
 #include "libmpm/mpm/crack_fields/contact.hpp"
 #include "libmpm/mpm/crack_tip_eval.hpp"
@@ -89,6 +103,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   // about 2 % of a step at 230 000 particles); then prepare_fields(whether a flag changed).
   using Base::near_test, Base::prepare_index;
   void prepare_fields(bool flags_changed) {
+    const int was = costs::enter(costs::CrackFields);  // (calls, not a scope: see the header)
     side_fields_.resize(cracks_.size());
     side_valid_.assign(cracks_.size(), 0);
     if (flags_changed) {
@@ -99,8 +114,11 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
       CLEAVE_TIME(Classify);
       classify_pairs();
     }
-    CLEAVE_TIME(Allocate);
-    allocate_fields();
+    {
+      CLEAVE_TIME(Allocate);
+      allocate_fields();
+    }
+    costs::leave(was);
   }
 
   // Calls f(node, x, w, g) for every stencil node of near particle k (index into near_list()):
@@ -279,7 +297,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   }
 
   using Base::contact;      // crack contact (Tasks 2 and 6c; Task 4 in update_momenta)
-  using Base::move_cracks;  // Task 7
+  using Base::move_cracks;  // Task 7 (the step's in the run's costs: crack_fields.hpp's header says why)
   using Base::take_overflow;
 
  private:

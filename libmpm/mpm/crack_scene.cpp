@@ -68,17 +68,22 @@ void cut_through_near_edges(Model<2>& m) {
   for (auto& c : m.cracks) {
     for (int end = 0; end < 2; ++end) {
       const crack::TipFrame f = crack::tip_frame(c, end);
-      // The material on the crack line ahead of the end, within two cells: where it stops.
+      // The material on the crack line ahead of the end, within two cells: where it stops. A
+      // particle whose domain reaches the line counts, also one whose centre lies exactly half a
+      // spacing off it (the rows on either side of a crack between particle rows), and the edge is
+      // compared with a cell to 1e-9 of one: both are exact figures that rounding decided before
+      // (2026-11-27: a crack on a node line ending half a cell short of the edge stayed a tip).
+      const double tol = 1e-9 * h;
       double edge = 0.0;
       bool ahead = false;
       for (std::size_t p = 0; p < P.size(); ++p) {
         const Vec<2> d = P.x[p] - f.tip;
         const double s = d.dot(f.e1);
-        if (s <= 0.0 || s > 2.0 * h || std::abs(d.dot(f.e2)) > half_size[p]) continue;
+        if (s <= 0.0 || s > 2.0 * h || std::abs(d.dot(f.e2)) > half_size[p] + tol) continue;
         ahead = true;
         edge = std::max(edge, s + half_size[p]);
       }
-      if (!ahead || edge > h) continue;
+      if (!ahead || edge > h - tol) continue;  // a ligament of a cell or more stays
       const std::string where = "crack '" + c.name + "': its " + (end ? "end" : "start") + " lies " +
                                 format("%.4g m (%.3g cell)", edge, edge / h) + " from a free edge ahead of it, a ligament MPM cannot resolve";
       const bool named_tip = c.tips != "auto" && c.tip[end];

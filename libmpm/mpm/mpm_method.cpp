@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "libmpm/core/part_costs.hpp"
 #include "libmpm/io/crack_output.hpp"
 #include "libmpm/mpm/particle_output.hpp"
 #include "libmpm/method/describe.hpp"
@@ -243,9 +244,10 @@ class MpmMethod final : public Method<Dim> {
 
  private:
   // J and K at the tips in the current state: a frame (cracks.vtu) and a crack_tips.csv row at the
-  // same step share one evaluation of the contours.
+  // same step share one evaluation of the contours (charged to J/K in the run's costs).
   const std::vector<crack::TipRecord>& tips_now() {
     if (tips_step_ != stepper_->step_count()) {
+      costs::Scope cost(costs::TipParameters);
       tips_ = stepper_->crack_tip_parameters(*m_.crack_tips);
       tips_step_ = stepper_->step_count();
     }
@@ -255,6 +257,7 @@ class MpmMethod final : public Method<Dim> {
   // The same for 3D fronts.
   const std::vector<crack::FrontRecord>& fronts_now() {
     if (fronts_step_ != stepper_->step_count()) {
+      costs::Scope cost(costs::TipParameters);
       fronts_ = stepper_->crack_front_parameters(*m_.crack_tips);
       fronts_step_ = stepper_->step_count();
     }

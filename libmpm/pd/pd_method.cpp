@@ -12,6 +12,7 @@
 #include <optional>
 #include <sstream>
 
+#include "libmpm/core/part_costs.hpp"
 #include "libmpm/io/particle_fields.hpp"
 #include "libmpm/method/describe.hpp"
 #include "libmpm/method/relaxation.hpp"
@@ -144,6 +145,7 @@ class PdMethod final : public Method<Dim> {
   std::vector<std::string> tip_columns() const override { return tips_.columns(); }
   // The tracked tips now; the first branching of a 2D crack is recorded for run.json.
   std::vector<std::vector<double>> tip_rows() override {
+    const costs::Scope cost(costs::TipTracking);
     std::vector<std::vector<double>> rows;
     const auto phi = solver_.damage();
     const double t = solver_.time();

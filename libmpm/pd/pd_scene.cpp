@@ -316,6 +316,27 @@ PdSystem<Dim> build_pd_system(const json& scene) {
     for (std::size_t k = 0; k < bl.size(); ++k)
       if (keep[k]) put(bl.i[k], bl.j[k], k);
   }
+  // Points left without any bond take no force: they stay where they are, at their initial velocity,
+  // while the body leaves them behind (a pre-crack through a row of points removes every bond that
+  // touches it). Said, since the damage of such a point reads 0 (docs/validation.md, "Stability at
+  // the extremes").
+  {
+    std::size_t lone = 0, first = 0;
+    for (std::size_t p = 0; p < P.size(); ++p)
+      if (m.nb.offset[p + 1] == m.nb.offset[p] && lone++ == 0) first = p;
+    if (lone > 0) {
+      std::string at = "(";
+      for (int d = 0; d < Dim; ++d) {
+        char v[32];
+        std::snprintf(v, sizeof v, "%g", P.x0[first][d]);
+        at += (d ? ", " : "") + std::string(v);
+      }
+      m.warnings.push_back(std::to_string(lone) + " of " + std::to_string(P.size()) + " points have no bond (the first at " +
+                           at + ") m): they take no force and keep their initial velocity, " +
+                           "and their damage reads 0; a pre-crack through a row of points cuts every bond of those " +
+                           "points: put cracks between lattice rows (points lie at (k + 1/2) " + dx_key + ")");
+    }
+  }
   // Eq. 15 of seed 003, per point: dt_i = sqrt(2 rho_i / sum_j V_j c_ij), c_ij = c beta / |xi|.
   {
     double worst = std::numeric_limits<double>::infinity();

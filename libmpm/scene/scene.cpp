@@ -86,6 +86,8 @@ void apply_override(json& scene, const std::string& kv) {
     value_nesting = 0;
   }
   json* node = &scene;
+  json* parent = nullptr;  // the object holding the last key, for a null that removes it
+  std::string last_name;
   std::size_t i = 0, levels = 0;  // the containers the value will sit in
   while (i < key.size()) {
     if (++levels + value_nesting > scene::kMaxNesting)
@@ -107,9 +109,15 @@ void apply_override(json& scene, const std::string& kv) {
       const std::string name = key.substr(i, end == std::string::npos ? std::string::npos : end - i);
       if (name.empty()) throw SceneError(key, "empty key name in --set");
       if (!node->is_null() && !node->is_object()) throw SceneError(key, "cannot set a key inside a non-object");
+      parent = node, last_name = name;
       node = &(*node)[name];
       i = end == std::string::npos ? key.size() : end;
     }
+  }
+  // KEY=null removes the key: a scene with "mpm": {...} may run as peridynamics with --set mpm=null.
+  if (value.is_null() && parent && i == key.size() && key.back() != ']') {
+    parent->erase(last_name);
+    return;
   }
   *node = value;
 }

@@ -25,7 +25,8 @@ int scene_dimension(const nlohmann::json& scene);
 std::string scene_method(const nlohmann::json& scene);
 
 // Applies one KEY=VALUE override; the key path uses '.' and [i] like error messages
-// (mpm.stress_update, bodies[1].velocity); VALUE is JSON or else a plain string.
+// (mpm.stress_update, bodies[1].velocity); VALUE is JSON or else a plain string; null removes the
+// key (an object's key; an array element is set to null).
 void apply_override(nlohmann::json& scene, const std::string& key_value);
 
 // Applies every override in order; SceneError when one key is set twice (or a key and a key inside

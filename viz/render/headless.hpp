@@ -162,6 +162,8 @@ struct PlotSeries {
   enum class Line { Solid, Dashed, None };
   Line line = Line::Solid;
   bool markers = false;  // a cross at each point
+  // Text beside each point (empty, or one per point; an empty string draws nothing there).
+  std::vector<std::string> point_labels = {};
   std::optional<std::array<unsigned char, 3>> colour = std::nullopt;  // default: plot_colour(its place)
 };
 
@@ -180,6 +182,8 @@ struct PlotLayout {
   // points on the data's edge (markers, a constant reference) are not drawn on the frame; 0: VTK's
   // automatic range (the data's, rounded out to ticks).
   double margin = 0;
+  // Logarithmic axes (decades); points with a value <= 0 on such an axis are left out.
+  bool log_x = false, log_y = false;
 };
 
 // Line plot (vtkChartXY drawn through a vtkContextActor in the context's window), white background,

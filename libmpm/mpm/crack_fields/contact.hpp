@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "libmpm/core/part_costs.hpp"
 #include "libmpm/crack/crack2d.hpp"
 #include "libmpm/mpm/crack_fields/crack_motion.hpp"
 #include "libmpm/mpm/model.hpp"
@@ -30,6 +31,7 @@ class CrackContact : public CrackMotion<Dim, SF> {
   // Every multi-field node on its own (it changes only its own fields' momenta and forces): in
   // parallel from kParallelPoints nodes.
   void contact(double dt, bool back_compute = false) {
+    const int was = costs::enter(costs::Contact);  // the run's costs (crack_fields.hpp says why calls)
     double cell_volume = G_.h * G_.h;
     if constexpr (Dim == 3) cell_volume *= G_.h;
     update_spins();
@@ -127,6 +129,7 @@ class CrackContact : public CrackMotion<Dim, SF> {
           }
         }
     }
+    costs::leave(was);
   }
 
  protected:

@@ -17,6 +17,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "libmpm/core/part_costs.hpp"
 #include "libmpm/crack/crack2d.hpp"
 #include "libmpm/mpm/crack_fields/grid_cells.hpp"
 #include "libmpm/mpm/model.hpp"
@@ -94,13 +95,15 @@ class SpatialIndex : public GridCells<Dim> {
   // The index for the cracks as they are now (Task 1 preamble). 3D: built afresh only when a crack
   // has changed since (a crack at rest, e.g. before the load reaches it, keeps its index).
   void prepare_index() {
+    const int was = costs::enter(costs::CrackFields);  // the run's costs (crack_fields.hpp says why calls)
     for (auto& c : cracks_) c.update_extent();
     if constexpr (Dim == 3) {
       note_crack_state();
-      if (index_epoch_ == crack_epoch_) return;
+      if (index_epoch_ == crack_epoch_) return costs::leave(was);
       index_epoch_ = crack_epoch_;
     }
     build_index();
+    costs::leave(was);
   }
   NearTest near_test() const {
     if constexpr (Dim == 3)
