@@ -101,8 +101,11 @@ TEST_F(RunCosts, TheSummaryCarriesTheCostsRunJsonRecords) {
   const RunSummary s = run(cracked_scene(), status);
   const json& c = status["costs"];
   EXPECT_EQ(c["wall_s"].get<double>(), s.costs.wall_s);
-  for (int p = 0; p < costs::kParts; ++p)
-    if (s.costs.on(p)) EXPECT_EQ(c["parts"][costs::key(p)].get<double>(), s.costs.seconds[p]) << costs::name(p);
+  for (int p = 0; p < costs::kParts; ++p) {
+    if (s.costs.on(p)) {
+      EXPECT_EQ(c["parts"][costs::key(p)].get<double>(), s.costs.seconds[p]) << costs::name(p);
+    }
+  }
 }
 
 TEST_F(RunCosts, AnAbortedRunRecordsItsCostsInRunJson) {

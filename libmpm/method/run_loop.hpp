@@ -66,6 +66,18 @@ struct RunSummary {
     if (scale > 0) max_energy_drift = std::max(max_energy_drift, std::fabs(total - first_energy) / scale);
   }
   double first_energy = -1.0, largest_energy = 0.0;
+  // Energy made from nothing: the growth of (kinetic + strain) less the external work since the first
+  // global row, over the largest energy or work seen. Damping and contact friction only lower it, so
+  // a gain is numerical (crack contact, a step near the limit).
+  double max_energy_gain = 0.0;
+  void observe_balance(double total, double work) {
+    if (!have_balance) first_balance = total - work, have_balance = true;
+    balance_scale = std::max({balance_scale, std::fabs(total), std::fabs(work)});
+    if (balance_scale > 0)
+      max_energy_gain = std::max(max_energy_gain, (total - work - first_balance) / balance_scale);
+  }
+  bool have_balance = false;
+  double first_balance = 0.0, balance_scale = 0.0;
 };
 
 // Throws RunAborted (after writing the last state) when a step detects a problem, RunOutputFailed
