@@ -315,9 +315,20 @@ int study_command(const std::vector<std::string>& args) {
     const std::string cout_text = read_text(tmp_out), cerr_text = read_text(tmp_err);
     fs::remove(tmp_out), fs::remove(tmp_err);
     if (g_stop) return 128 + g_stop;
-    if (c.exit_code != 0 && !may_be_refused)
+    if (c.exit_code != 0 && !may_be_refused) {
+      // A key the study set is named as the study's; anything else as the scene's.
+      const std::string why = last_error(cerr_text);
+      std::smatch m;
+      if (std::regex_search(why, m, std::regex("error at '([^']+)': (.*)$")))
+        for (const auto& s : p.settings)
+          if (m[1].str().rfind(s.key, 0) == 0) {
+            std::fprintf(stderr, "cleave: %s: error at '%s' (set by the study, run '%s'): %s\n", file.string().c_str(),
+                         m[1].str().c_str(), p.label.c_str(), m[2].str().c_str());
+            return kBadInput;
+          }
       return bad_study(file, "run '" + p.label + "' (" + settings_text(p.varied) + ")",
-                       "cleave check refuses its scene: " + last_error(cerr_text));
+                       "cleave check refuses its scene: " + why);
+    }
     if (c.exit_code != 0) {
       r.status = "refused", r.exit_code = c.exit_code, r.message = last_error(cerr_text);
       continue;
