@@ -127,4 +127,27 @@ inline json dcb_slab_scene(int dim, double end) {
   return s;
 }
 
+// A penny crack of radius a = 8 mm (1 mm cells) in a quarter block of half-width and half-height
+// block x a under remote tension 10 MPa, damped (tests/test_crack_fronts*.cpp).
+inline json penny_block_scene(double block) {
+  const double a = 8.0, W = block * a;  // mm, 1 mm cells
+  json s = json::parse(R"({
+    "units": {"length": "mm", "stress": "MPa", "density": "g/cm3", "time": "us", "inverse_time": "1/us"},
+    "analysis": {"type": "3d"}, "resolution": 1,
+    "mpm": {"shape_function": "linear", "stress_update": "USAVG"},
+    "materials": [{"name": "m", "type": "linear_elastic", "E": 3000, "nu": 0.3, "density": 1.19}],
+    "cracks": [{"name": "penny", "ellipse": {"center": [0, 0, 0], "normal": [0, 0, 1], "radius": 8},
+                "contact": {"law": "frictionless"}}],
+    "loads": [{"type": "symmetry", "axis": "x", "position": 0}, {"type": "symmetry", "axis": "y", "position": 0},
+              {"type": "traction", "face": "+z", "traction": [0, 0, 10], "rise_time": 20},
+              {"type": "traction", "face": "-z", "traction": [0, 0, -10], "rise_time": 20}],
+    "damping": {"kinetic": 0.1}, "time": {"end": 150, "cfl": 0.5},
+    "crack_tips": {"reference": {"type": "embedded_crack", "crack": "penny", "stress": 10}}})");
+  s.update({{"grid", {{"min", {-2, -2, -W - 2}}, {"max", {W + 2, W + 2, W + 2}}}},
+               {"bodies", {{{"name", "block"}, {"material", "m"},
+                            {"shape", {{"type", "box"}, {"min", {0, 0, -W}}, {"max", {W, W, W}}}}}}}});
+  return s;
+}
+
+
 }  // namespace cleave::test

@@ -181,90 +181,33 @@ TEST(CrackFrontJ, ThroughCrackedSlabGivesThePlaneStrainDcbJAtEveryFrontNode) {
 // Validation 6: a uniform velocity added to every particle leaves J unchanged (kinetic terms are
 // taken relative to the front's motion): eq. 32 and eq. 33.
 TEST(CrackFrontJ, AUniformVelocityAddedToEveryParticleLeavesJUnchanged) {
+  // One run; J with and without the volume term read from the same state (the term changes only the
+  // evaluation, not the motion).
   const double end = 0.06;
-  for (bool volume : {false, true}) {
-    json s = test::dcb_slab_scene(3, end);
-    s["crack_tips"] = {{"volume_term", volume}};
-    Model<3> m = build_model<3>(s);
-    auto st = make_stepper<3>(m);
-    ASSERT_FALSE(test::advance(*st, std::lround(end / m.dt)));
-    const auto before = st->crack_front_parameters(*m.crack_tips);
-    for (auto& v : m.particles.v) v += Vec<3>(3.0, -2.0, 1.0);  // m/s, against arm speeds of mm/s
-    const auto after = st->crack_front_parameters(*m.crack_tips);
+  json s = test::dcb_slab_scene(3, end);
+  s["crack_tips"] = json::object();
+  Model<3> m = build_model<3>(s);
+  auto st = make_stepper<3>(m);
+  ASSERT_FALSE(test::advance(*st, std::lround(end / m.dt)));
+  crack::TipSettings with_volume = *m.crack_tips, without_volume = *m.crack_tips;
+  with_volume.volume_term = true;
+  without_volume.volume_term = false;
+  const auto before_with = st->crack_front_parameters(with_volume), before_without = st->crack_front_parameters(without_volume);
+  for (auto& v : m.particles.v) v += Vec<3>(3.0, -2.0, 1.0);  // m/s, against arm speeds of mm/s
+  const auto after_with = st->crack_front_parameters(with_volume), after_without = st->crack_front_parameters(without_volume);
+  for (const auto* pair : {&before_with, &before_without}) {
+    const bool volume = pair == &before_with;
+    const auto& before = *pair;
+    const auto& after = volume ? after_with : after_without;
     ASSERT_EQ(before.size(), after.size());
+    ASSERT_FALSE(before.empty());
     for (std::size_t i = 0; i < before.size(); ++i) {
       EXPECT_NEAR(after[i].J1, before[i].J1, 1e-9 * std::fabs(before[i].J1)) << "volume term " << volume << ", node " << i;
       EXPECT_NEAR(after[i].KI, before[i].KI, 1e-9 * std::fabs(before[i].KI)) << "volume term " << volume << ", node " << i;
     }
   }
-}
-
-// Validation 1: a penny crack (radius a = 8 cells) in a block, under remote tension, damped to
-// static: K_I = 2 sigma sqrt(a / pi) within 5 % at every front node, K_II and K_III below 3 % of
-// K_I. Quarter model (symmetry planes x = 0, y = 0: the front's end nodes lie on them), the block's
-// half-width and half-height 5a (a 4a block reads 2 % higher, 3a 6 %: its finite size;
-// docs/validation.md, figures from bench/crack_fronts/penny_static.py). The default contour (2
-// cells) with the out-of-plane term; without it the plane contour reads K_I about
-// sqrt(1 + 0.46 r / a) = 5.6 % high on this curved front.
-json penny_scene(double block) {
-  const double a = 8.0, W = block * a;  // mm, 1 mm cells
-  json s = json::parse(R"({
-    "units": {"length": "mm", "stress": "MPa", "density": "g/cm3", "time": "us", "inverse_time": "1/us"},
-    "analysis": {"type": "3d"}, "resolution": 1,
-    "mpm": {"shape_function": "linear", "stress_update": "USAVG"},
-    "materials": [{"name": "m", "type": "linear_elastic", "E": 3000, "nu": 0.3, "density": 1.19}],
-    "cracks": [{"name": "penny", "ellipse": {"center": [0, 0, 0], "normal": [0, 0, 1], "radius": 8},
-                "contact": {"law": "frictionless"}}],
-    "loads": [{"type": "symmetry", "axis": "x", "position": 0}, {"type": "symmetry", "axis": "y", "position": 0},
-              {"type": "traction", "face": "+z", "traction": [0, 0, 10], "rise_time": 20},
-              {"type": "traction", "face": "-z", "traction": [0, 0, -10], "rise_time": 20}],
-    "damping": {"kinetic": 0.1}, "time": {"end": 150, "cfl": 0.5},
-    "crack_tips": {"reference": {"type": "embedded_crack", "crack": "penny", "stress": 10}}})");
-  s.update({{"grid", {{"min", {-2, -2, -W - 2}}, {"max", {W + 2, W + 2, W + 2}}}},
-               {"bodies", {{{"name", "block"}, {"material", "m"},
-                            {"shape", {{"type", "box"}, {"min", {0, 0, -W}}, {"max", {W, W, W}}}}}}}});
-  return s;
-}
-
-TEST(CrackFrontK, PennyCrackInABlockDampedToStaticGivesKIWithinFivePercentAtEveryFrontNode) {
-  Model<3> m = build_model<3>(penny_scene(5.0));
-  auto st = make_stepper<3>(m);
-  ASSERT_FALSE(test::advance(*st, std::lround(m.end_time / m.dt)));
-  const double K0 = 2 * 10e6 * std::sqrt(0.008 / kPi);
-  const auto fronts = st->crack_front_parameters(*m.crack_tips);
-  ASSERT_GE(fronts.size(), 20u);
-  for (const auto& r : fronts) {
-    std::printf("node %2d at (%.2f, %.2f) mm: KI/K0 %.4f, KII/K0 %+.5f, KIII/K0 %+.5f, flag %d\n", r.node, r.x.x() * 1e3,
-                r.x.y() * 1e3, r.KI / K0, r.KII / K0, r.KIII / K0, r.flag);
-    EXPECT_EQ(r.flag, 0) << "node " << r.node;
-    EXPECT_NEAR(r.KI / K0, 1.0, 0.05) << "node " << r.node;
-    EXPECT_LT(std::fabs(r.KII), 0.03 * r.KI) << "node " << r.node;
-    EXPECT_LT(std::fabs(r.KIII), 0.03 * r.KI) << "node " << r.node;
-  }
-}
-
-// Validation 3 (its static part): the rod of seed 000 §4.1 with an embedded elliptical crack
-// (data/scenes/rod_elliptical_crack.json, quarter model) at the seed's finest cells, 3 mm, damped to
-// static: K_I at the deepest point A (x = 0, y = 20 mm, on a symmetry plane) within 3 % of the
-// finite rod's 83.6 MPa m^1/2 (validation.md §4). K_I at 240 us is within 0.2 % of its value at 400 us.
-TEST(CrackFrontK, RodWithAnEmbeddedEllipticalCrackDampedToStaticGivesKIAtTheDeepestPointWithinThreePercent) {
-  json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/rod_elliptical_crack.json");
-  s["resolution"] = 3;
-  s["damping"] = {{"kinetic", 0.05}};  // 1/us
-  s["time"]["end"] = 250;
-  s.erase("output");
-  Model<3> m = build_model<3>(s);
-  auto st = make_stepper<3>(m);
-  ASSERT_FALSE(test::advance(*st, std::lround(m.end_time / m.dt)));
-  const auto fronts = st->crack_front_parameters(*m.crack_tips);
-  const auto A = std::min_element(fronts.begin(), fronts.end(), [](const auto& a, const auto& b) {
-    return (a.x - Vec<3>(0, 0.02, 0)).norm() < (b.x - Vec<3>(0, 0.02, 0)).norm();
-  });
-  ASSERT_NE(A, fronts.end());
-  ASSERT_LT((A->x - Vec<3>(0, 0.02, 0)).norm(), 1e-4);
-  std::printf("K_I at A: %.4g MPa m^1/2 (%+.2f %% of 83.6)\n", A->KI / 1e6, 100 * (A->KI / 83.6e6 - 1));
-  EXPECT_EQ(A->flag, 0);
-  EXPECT_NEAR(A->KI / 83.6e6, 1.0, 0.03);
+  // The volume term is not zero here (the arms accelerate), so both evaluations were exercised.
+  EXPECT_NE(before_with[0].J1, before_without[0].J1);
 }
 
 // The evaluation's sums are per grid node in a fixed particle order (crack_front_sums.hpp), its front
@@ -325,7 +268,7 @@ TEST(CrackFrontScene, AFrontNearAFreeSurfaceIsWarnedAboutAndItsNodesFlagged) {
 }
 
 TEST(CrackFrontScene, AFrontMeetingASymmetryPlaneIsSquaredToItSoItsContourLiesInThePlane) {
-  const Model<3> m = build_model<3>(penny_scene(2.0));
+  const Model<3> m = build_model<3>(test::penny_block_scene(2.0));
   const auto& f = m.cracks[0].fronts[0];
   for (std::size_t k : {std::size_t{0}, f.nodes.size() - 1}) {
     const Vec<3>& x = m.cracks[0].points[f.nodes[k]];
