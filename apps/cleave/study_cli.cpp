@@ -381,6 +381,7 @@ int study_command(const std::vector<std::string>& args) {
   double work_total = 0, work_done = 0, wall_done = 0;
   for (const auto& p : planned) work_total += p.work();
   const auto t_study = std::chrono::steady_clock::now();
+  const bool tty = isatty(fileno(stderr));  // the progress line: rewritten in place, or logged
   for (std::size_t i = 0; i < st.runs.size() && !g_stop; ++i) {
     const RunPlan& p = st.runs[i];
     RunRecord& r = runs[i];
@@ -413,8 +414,11 @@ int study_command(const std::vector<std::string>& args) {
     for (const auto& s : set_args(p)) rargs.push_back(s);
     const std::string settings = settings_text(p.varied);
     const std::string what = p.varied.empty() || settings.size() > 60 ? p.label : settings;
+    // On a terminal the line is rewritten in place; in a log (stderr not a terminal) a line every 30 s.
+    double logged_at = 0;
     auto progress = [&](double run_wall) {
-      if (quiet) return;
+      if (quiet || (!tty && run_wall - logged_at < 30)) return;
+      logged_at = run_wall;
       double frac = 0;
       const json rj = json::parse(read_text(dir / "run.json"), nullptr, false);
       if (!rj.is_discarded() && rj.contains("time") && rj.contains("end_time") && rj["end_time"].get<double>() > 0)
@@ -423,13 +427,13 @@ int study_command(const std::vector<std::string>& args) {
       const double wi = planned[i].work(), after = work_total - work_done - wi;
       const double pace = work_done > 0 ? wall_done / work_done : frac > 0 ? run_wall / (frac * wi) : 0;
       const double rest = frac > 0.02 ? run_wall * (1 - frac) / frac : pace * wi * (1 - frac);
-      std::fprintf(stderr, "\rstudy: run %zu of %zu (%s): %3.0f %%, %s; study ETA %s   ", i + 1, st.runs.size(),
-                   what.c_str(), 100 * frac, format_seconds(run_wall).c_str(),
-                   pace > 0 ? format_seconds(rest + pace * std::max(0.0, after)).c_str() : "?");
+      std::fprintf(stderr, "%sstudy: run %zu of %zu (%s): %3.0f %%, %s; study ETA %s%s", tty ? "\r\033[K" : "", i + 1,
+                   st.runs.size(), what.c_str(), 100 * frac, format_seconds(run_wall).c_str(),
+                   pace > 0 ? format_seconds(rest + pace * std::max(0.0, after)).c_str() : "?", tty ? "" : "\n");
     };
     if (!quiet) std::fprintf(stderr, "study: run %zu of %zu (%s)%s\n", i + 1, st.runs.size(), what.c_str(), resume ? ": resumed" : "");
     const ChildResult c = run_child(rargs, dir / "stdout.txt", dir / "stderr.txt", progress);
-    if (!quiet) std::fprintf(stderr, "\r\033[K");
+    if (!quiet && tty) std::fprintf(stderr, "\r\033[K");
     r.exit_code = c.exit_code;
     r.wall_s = wall_before + c.wall_s, r.cpu_s = cpu_before + c.cpu_s, r.peak_mb = std::max(peak_before, c.peak_mb);
     r.particles = planned[i].points;
