@@ -111,15 +111,28 @@ TEST(CrackRotation, SpinningDiskHasNoJAndStaysClosedWithoutContact) {
   EXPECT_LT(r.drift, 1e-3);
 }
 
-// Items 1-2 where they are met (docs/validation.md lists every law and detection): volume detection
-// with frictionless contact and uGIMP, 1 rad/ms over one radian: energy within 2.6e-4 (2.7e-3 before),
-// opening 1.6e-3 cell. About 6 s.
-TEST(CrackRotation, SpinningDiskKeepsItsEnergyWithVolumeDetectionFrictionless) {
-  const SpinResult r = spin(1.0, 1.0, "frictionless", "volume", "ugimp", false);
-  print("w 1.0 rad/ms ugimp volume frictionless", r);
-  EXPECT_NEAR(r.angle, 1.0, 1e-3);
-  EXPECT_LT(r.drift, 1e-3);
-  EXPECT_LT(r.opening, 0.01);
+// Items 1-2: every contact law and detection, 1 rad/ms over one radian: energy within the issue's
+// 0.1 % (at most 2.9e-4), crack opening below 1 % of a cell (6e-4), J below 1 J/m^2 (0.64).
+// Before contact kept its pairs for the whole step (contact.hpp), displacement detection blew up
+// with every law at 0.11-0.73 rad and volume detection with stick drifted 15 % (uGIMP) or blew up
+// (linear). About 25 s (linear) and 40 s (uGIMP).
+void every_law_and_detection_keeps_the_spinning_disk_still(const char* shape) {
+  for (const char* det : {"volume", "displacement"})
+    for (const char* law : {"stick", "frictionless", "friction"}) {
+      const SpinResult r = spin(1.0, 1.0, law, det, shape);
+      const std::string what = std::string("w 1.0 rad/ms ") + shape + " " + det + " " + law;
+      print(what.c_str(), r);
+      EXPECT_NEAR(r.angle, 1.0, 1e-3) << what;
+      EXPECT_LT(r.drift, 1e-3) << what;
+      EXPECT_LT(r.opening, 0.01) << what;
+      EXPECT_LT(r.J, 1.0) << what;
+    }
+}
+TEST(CrackRotation, SpinningDiskKeepsItsEnergyAndItsCrackClosedWithEveryContactLawLinear) {
+  every_law_and_detection_keeps_the_spinning_disk_still("linear");
+}
+TEST(CrackRotation, SpinningDiskKeepsItsEnergyAndItsCrackClosedWithEveryContactLawUGimp) {
+  every_law_and_detection_keeps_the_spinning_disk_still("ugimp");
 }
 
 // The study behind the figures: every law and detection, linear and uGIMP, at 0.1 and 1 rad/ms.

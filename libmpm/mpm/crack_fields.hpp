@@ -118,6 +118,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
       CLEAVE_TIME(Allocate);
       allocate_fields();
     }
+    begin_step_contact();
     costs::leave(was);
   }
 
@@ -296,7 +297,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
     else return evaluate_crack_tips<SF>(m, ts, std::forward<Accel>(accel));
   }
 
-  using Base::contact;      // crack contact (Tasks 2 and 6c; Task 4 in update_momenta)
+  using Base::begin_step_contact, Base::contact;  // crack contact (Tasks 2 and 6c; Task 4 in update_momenta)
   using Base::move_cracks;  // Task 7 (the step's in the run's costs: crack_fields.hpp's header says why)
   using Base::take_overflow;
 
