@@ -84,8 +84,9 @@ class CrackContact : public CrackMotion<Dim, SF> {
           const double approach = dv.dot(nrm);  // > 0: the faces move towards each other
           uint8_t& touched = touching_[b * kPairSlots + i * kFieldSlots + j];  // earlier in this step
           bool touching = touched;
-          if (touching || (back_compute && std::min(ma, mb) < kMinForcedShare * (ma + mb))) {
-            // (kept, or not to be added by Task 4)
+          const bool may_add = !touching && !(back_compute && std::min(ma, mb) < kMinForcedShare * (ma + mb));
+          if (!may_add) {
+            // (kept from earlier in the step, or not Task 4's to add)
           } else if (c.detection == crack::Detection::Volume) {
             // Eq. 10. An opening g takes about g h (1 - d/h) from the volume of a node at distance d
             // from the crack, so approaching faces count as touching while g <= (1 - v_sep) h / (1 - d/h):
@@ -119,9 +120,7 @@ class CrackContact : public CrackMotion<Dim, SF> {
           }
           // The node carries a crack point whose faces touch or would cross within the step
           // (flag_closing_surfaces): contact, whatever the node-averaged indicator says.
-          if (!touching && approach > 0.0 && closing_[b * cracks_.size() + crack] &&
-              !(back_compute && std::min(ma, mb) < kMinForcedShare * (ma + mb)))
-            touching = true;
+          if (may_add && !touching && approach > 0.0 && closing_[b * cracks_.size() + crack]) touching = true;
           if (!touching) continue;
           touched = 1;
           // Stick: both fields take the centre-of-mass velocity (eq. 13), up to the rigid spin's
