@@ -37,8 +37,8 @@ class CrackContact : public CrackMotion<Dim, SF> {
   // moved the impulse to the field across the crack, while Tasks 2 and 6c, on the same pair's unforced
   // velocities, let it go: a one-way spring across the crack that fed energy into a spinning cracked
   // disk until it blew up (displacement detection, every law; stick with volume detection). Coupled
-  // in every task of the step or in none, the disk keeps its energy to 3e-4 over a radian with every
-  // law and detection, and colliding faces still stop within 1 % of a cell (docs/validation.md,
+  // in every task of the step or in none, the disk at 1 rad/ms keeps its energy to 3e-4 over a radian
+  // with every law and detection, and colliding faces still stop within 1 % of a cell (docs/validation.md,
   // cracks under rigid rotation).
   // Every multi-field node on its own (it changes only its own fields' momenta and forces): in
   // parallel from kParallelPoints nodes.
