@@ -149,5 +149,4 @@ inline json penny_block_scene(double block) {
   return s;
 }
 
-
 }  // namespace cleave::test

@@ -13,4 +13,9 @@ namespace cleave::crack {
 template <int Dim>
 void read_crack_contact(const ObjectReader& crack_entry, ExplicitCrack<Dim>& c);
 
+// The same keys read from r (an object whose allowed keys the caller set) into c. Cracks detect by
+// "volume" (default) or "displacement"; bodies (bodies = true) by "position" (default, with
+// "d_contact") or "volume": the displacement test needs faces that start together.
+void read_contact_settings(const ObjectReader& r, ContactSettings& c, bool bodies);
+
 }  // namespace cleave::crack

@@ -119,6 +119,12 @@ std::vector<Vec<2>> read_straight(const ObjectReader& r, double scale) {
 template <int Dim>
 void read_crack_contact(const ObjectReader& cr, ExplicitCrack<Dim>& c) {
   const ObjectReader r(cr["contact"], cr.at("contact"), {"law", "mu", "detection", "v_sep", "v_contact"});
+  read_contact_settings(r, c, false);
+}
+template void read_crack_contact<2>(const ObjectReader&, ExplicitCrack<2>&);
+template void read_crack_contact<3>(const ObjectReader&, ExplicitCrack<3>&);
+
+void read_contact_settings(const ObjectReader& r, ContactSettings& c, bool bodies) {
   const std::string law = r.string("law");
   const ContactLaws& laws = ContactLaws::instance();
   const ContactLawStyle* style = laws.find(law);
@@ -134,7 +140,12 @@ void read_crack_contact(const ObjectReader& cr, ExplicitCrack<Dim>& c) {
     for (auto& n : with_mu) n = "\"" + n + "\"";
     throw SceneError(r.at("mu"), "only valid with law " + join_names(with_mu, " or ") + " (law is \"" + law + "\")");
   }
-  const std::string det = r.string_or("detection", "volume");
+  // Crack faces: volume (default) or displacement; bodies: position (default) or volume.
+  const char* valid = bodies ? "position, volume" : "volume, displacement";
+  const std::string det = r.string_or("detection", bodies ? "position" : "volume");
+  for (const char* k : {"v_sep", "v_contact"})
+    if (r.has(k) && det != "volume") throw SceneError(r.at(k), "only valid with detection \"volume\"");
+  if (r.has("d_contact") && det != "position") throw SceneError(r.at("d_contact"), "only valid with detection \"position\"");
   if (det == "volume") {
     c.detection = Detection::Volume;
     c.v_sep = r.number_or("v_sep", 0.9);
@@ -143,17 +154,21 @@ void read_crack_contact(const ObjectReader& cr, ExplicitCrack<Dim>& c) {
       throw SceneError(r.at("v_sep"), "must lie between 0 and 1 (relative nodal volume below which faces are apart)");
     if (!(c.v_contact > 1.0 && std::isfinite(c.v_contact)))
       throw SceneError(r.at("v_contact"), "must be greater than 1 (relative nodal volume above which faces touch)");
-  } else if (det == "displacement") {
+  } else if (det == "displacement" && !bodies) {
     c.detection = Detection::Displacement;
-    for (const char* k : {"v_sep", "v_contact"})
-      if (r.has(k)) throw SceneError(r.at(k), "only valid with detection \"volume\"");
+  } else if (det == "position" && bodies) {
+    c.detection = Detection::Position;
+    c.d_contact = r.number_or("d_contact", c.d_contact);
+    if (!(c.d_contact > 0.0 && c.d_contact <= 2.0))
+      throw SceneError(r.at("d_contact"), "must lie in (0, 2] cells (the distance between the two bodies' mass "
+                                          "centres at a node below which they touch)");
+  } else if (det == "displacement") {
+    throw SceneError(r.at("detection"), "\"displacement\" compares the displacements of two crack faces that start "
+                                        "together; bodies detect contact by \"position\" (default) or \"volume\"");
   } else {
-    throw SceneError(r.at("detection"), "unknown contact detection \"" + det + "\"; valid: volume, displacement");
+    throw SceneError(r.at("detection"), "unknown contact detection \"" + det + "\"; valid: " + valid);
   }
 }
-template void read_crack_contact<2>(const ObjectReader&, ExplicitCrack<2>&);
-template void read_crack_contact<3>(const ObjectReader&, ExplicitCrack<3>&);
-
 
 bool segments_intersect(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c, const Vec<2>& d) {
   const int o1 = area_sign(a, b, c), o2 = area_sign(a, b, d);

@@ -45,9 +45,16 @@ inline Side crack_crossing(const Crack2D& c, const Vec<2>& particle, const Vec<2
 
 // Velocity-field key of the line from x (a particle, or a point standing for one) to the node at
 // xn, over every crack: one code per crossed crack, code = 2 crack + (below ? 1 : 0) + 1, two codes
-// in ascending order (low 16 bits first); 0 when no crack is crossed, kFieldKeyOverflow when three
-// or more are. The same key the stepper's crack fields use (whole-crack scan, no spatial index).
+// of kKeyCodeBits in ascending order (bits 0-11, then 12-23); 0 when no crack is crossed,
+// kFieldKeyOverflow when three or more are. The same key the stepper's crack fields use
+// (whole-crack scan, no spatial index). The stepper adds a body tag in bits 24-31 where bodies in
+// contact meet (libmpm/mpm/crack_fields/body_groups.hpp); the crack codes are read with key_code.
 inline constexpr uint32_t kFieldKeyOverflow = 0xffffffffu;
+inline constexpr int kKeyCodeBits = 12;
+inline constexpr uint32_t kKeyCodeMask = (1u << kKeyCodeBits) - 1, kKeyCracksMask = 0xffffffu;
+inline constexpr int kMaxCracks = static_cast<int>(kKeyCodeMask / 2) - 1;  // codes up to 2 (kMaxCracks - 1) + 2
+// Code c (0 or 1) of a key (0: none).
+inline constexpr uint32_t key_code(uint32_t key, int c) { return (key >> (kKeyCodeBits * c)) & kKeyCodeMask; }
 
 // Collects the crossings of one particle-node line into its field key (with the crossed segment of
 // each code): add() returns false when a third crack is crossed (the key is then kFieldKeyOverflow).
@@ -69,7 +76,7 @@ struct FieldKeyBuilder {
       std::swap(seg[0], seg[1]);
     }
     if (seg_out) seg_out[0] = seg[0], seg_out[1] = seg[1];
-    return code[0] | (code[1] << 16);
+    return code[0] | (code[1] << kKeyCodeBits);
   }
 };
 

@@ -20,9 +20,10 @@ namespace cleave::crack {
 // against a half model, which has none). The names are registered in crack2d.cpp (ContactLaws).
 enum class ContactLaw { Stick, Frictionless, Friction, None };
 // Contact detection: seed 002's nodal volume (V_rel > v_contact: contact; V_rel < v_sep: apart;
-// between: approaching faces are in contact) or seed 000's nodal displacement (approaching faces
-// whose displacements overlap are in contact).
-enum class Detection { Volume, Displacement };
+// between: approaching faces are in contact), seed 000's nodal displacement (approaching faces
+// whose displacements overlap are in contact), or, between bodies, position (approaching fields
+// whose mass centres come within d_contact cells along the normal are in contact).
+enum class Detection { Volume, Displacement, Position };
 
 // 3D cracks keep their fronts (boundary edges inside the material, with frames: fronts.hpp); in 2D
 // the fronts are the two end points, described by `tip` alone.
@@ -33,18 +34,24 @@ struct FrontsOf<3> {
   std::vector<CrackFront> fronts;
 };
 
+// How two velocity fields at a node interact: a crack's faces, or two bodies (the scene's "contact"
+// object, contact_keys.hpp).
+struct ContactSettings {
+  ContactLaw contact_law = ContactLaw::Frictionless;
+  double friction = 0.0;  // Coulomb mu, only for "friction"
+  Detection detection = Detection::Volume;
+  double v_sep = 0.9, v_contact = 1.1;
+  double d_contact = 0.8;  // cells (position detection)
+};
+
 template <int Dim>
-struct ExplicitCrack : Surface<Dim>, FrontsOf<Dim> {
+struct ExplicitCrack : Surface<Dim>, FrontsOf<Dim>, ContactSettings {
   using ContactLaw = crack::ContactLaw;
   using Detection = crack::Detection;
 
   int id = 0;  // position in the scene's "cracks" array
   // points (Surface): vertices (massless crack particles), SI; in 2D the direction points[0] ->
-  // points[1] -> ... defines above (left) / below (right).
-  ContactLaw contact_law = ContactLaw::Frictionless;
-  double friction = 0.0;  // Coulomb mu, only for "friction"
-  Detection detection = Detection::Volume;
-  double v_sep = 0.9, v_contact = 1.1;
+  // points[1] -> ... defines above (left) / below (right). Contact law and detection: ContactSettings.
   // Which fronts are crack tips (where crack_tips computes J and K): the scene's "auto" (a front
   // with material ahead of it; the scene reader decides), "both", "start", "end" or "none". One
   // flag per front; 2D: tip[0] is points[0], tip[1] is points.back().

@@ -81,9 +81,10 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
       if (c.contact_law == Law::None) continue;
       (c.detection == crack::Detection::Volume ? need_volume_ : need_disp_) = true;
     }
+    if (bodies_) need_volume_ = true;  // (bodies detect contact by nodal volume)
   }
 
-  bool active() const { return !cracks_.empty(); }
+  bool active() const { return !cracks_.empty() || bodies_; }
   // One flag per particle: near a crack at the start of the step (set by the stepper's strip-order
   // pass with near_test(), between prepare_index() and prepare_fields()).
   const uint8_t* near_flags() const { return near_flag_.data(); }
@@ -158,6 +159,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   // displacement contact, mass-weighted displacements per field (seed 000 eq. 68) and rotations per node.
   // Each detection method's sums only when a crack uses it (volumes: seed 002; displacements: seed 000).
   void extrapolate(std::size_t k, const St& s) {
+    if (bodies_) return extrapolate_with_gradients(k, s);
     if (need_volume_) {
       if (need_disp_) return extrapolate<true, true>(k, s);
       return extrapolate<true, false>(k, s);
@@ -205,6 +207,18 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
     });
   }
 
+  // The same with contact between bodies (which detect it by position or volume): then also each
+  // field's sum m_p grad S, from which contact takes the normal between two bodies.
+  void extrapolate_with_gradients(std::size_t k, const St& s) {
+    if (need_disp_) extrapolate<true, true>(k, s);
+    else extrapolate<true, false>(k, s);
+    const double mp = P_.mass[static_cast<std::size_t>(near_[k])];
+    for_each_pair(k, s, [&](int64_t n, int32_t x, double, const V& g) {
+      if (x >= 0) grad_[x] += mp * g;
+      else if (node_block_[n] >= 0) grad0_[node_block_[n]] += mp * g;
+    });
+  }
+
   using Base::force, Base::kin, Base::mass, Base::momentum;  // field x of node n (x < 0: the ordinary one)
 
   // Field slot (as in for_each_pair) for the pair particle p - node n, classified afresh: for loads
@@ -213,8 +227,10 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   int32_t field_of(std::size_t p, int64_t n, const V& node_pos) const {
     if (!near_flag_[p]) return -1;
     int32_t seg[2];
-    const uint32_t key = classify(P_.x[p], node_pos, seg);
-    if (key == 0 || key == kOverflow) return -1;
+    uint32_t key = classify(P_.x[p], node_pos, seg);
+    if (key == kOverflow) return -1;
+    key |= body_tag(p, n);
+    if (key == 0) return -1;
     return extra_field(n, key);
   }
 
@@ -306,6 +322,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   using Base::collect_near_particles, Base::cracks_, Base::disp0_, Base::disp_, Base::extra_field, Base::pos0_, Base::pos_;
   using Base::force_, Base::grid_, Base::kin_, Base::kOverflow, Base::mass_, Base::momentum_, Base::near_;
   using Base::near_flag_, Base::near_index_, Base::near_st_, Base::node_block_, Base::P_, Base::pair_slot_;
+  using Base::bodies_, Base::body_tag, Base::grad_, Base::grad0_;
   using Base::rot_, Base::side_fields_, Base::side_valid_, Base::slot_any_, Base::volume_, Base::xkin_;
 
   std::vector<double> area0_;  // per particle: its area (2D) or volume (3D) at zero strain (eq. 25)

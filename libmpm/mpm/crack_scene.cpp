@@ -229,6 +229,9 @@ void build_cracks3d(Model<3>& m) {
 
 template <int Dim>
 void read_cracks(const json& scene, double length, Model<Dim>& m) {
+  if (scene["cracks"].is_array() && scene["cracks"].size() > static_cast<std::size_t>(crack::kMaxCracks))
+    throw SceneError("cracks", "holds " + std::to_string(scene["cracks"].size()) + " cracks; at most " +
+                                   std::to_string(crack::kMaxCracks) + " (a velocity field's key numbers them in 12 bits)");
   if constexpr (Dim == 3) {
     // Crack particles at half a cell, as the seed's (its §4: "crack particles ... about half the cell size").
     m.cracks = crack::parse_cracks3d(scene["cracks"], "cracks", length, {0.5 * m.grid.h, true});

@@ -13,6 +13,7 @@
 #include "libmpm/crack/front_parameters.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/material/material.hpp"
+#include "libmpm/mpm/body_contact.hpp"
 #include "libmpm/mpm/grid.hpp"
 #include "libmpm/mpm/loads.hpp"
 #include "libmpm/mpm/particles.hpp"
@@ -48,6 +49,7 @@ struct Model : RunSettings {
   std::vector<std::unique_ptr<Material<Dim>>> materials;
   std::vector<Body> bodies;
   Particles<Dim> particles;
+  BodyContact body_contact;  // fields of their own for bodies in contact (none unless the scene declares it)
   std::vector<crack::ExplicitCrack<Dim>> cracks;  // explicit cracks (none in uncracked scenes)
   std::optional<crack::TipSettings> crack_tips;  // J and K at the crack tips, when the scene asks
   // 3D: the closed-form references crack_tips.reference names (crack_fronts.csv's *_ref columns).

@@ -19,6 +19,26 @@
 namespace cleave {
 namespace {
 
+// One line per declared pair of bodies in contact (the scene's "contact").
+template <int Dim>
+void describe_body_contact(const Model<Dim>& m, std::vector<std::string>& out) {
+  const BodyContact& bc = m.body_contact;
+  if (!bc.active()) return;
+  for (std::size_t a = 0; a < m.bodies.size(); ++a)
+    for (std::size_t b = a + 1; b < m.bodies.size(); ++b) {
+      if (bc.group[a] == bc.group[b]) continue;
+      const crack::ContactSettings* c = bc.law(bc.group[a], bc.group[b]);
+      if (!c) continue;
+      const std::string law = std::string(crack::contact_law_name(c->contact_law)) +
+                              (c->contact_law == crack::ContactLaw::Friction ? format(" mu=%g", c->friction) : "");
+      out.push_back(format("contact '%s' - '%s': %s, %s", m.bodies[a].name.c_str(), m.bodies[b].name.c_str(),
+                           law.c_str(),
+                           c->detection == crack::Detection::Volume
+                               ? format("volume detection (v_sep %g, v_contact %g)", c->v_sep, c->v_contact).c_str()
+                               : format("position detection (d_contact %g cells)", c->d_contact).c_str()));
+    }
+}
+
 template <int Dim>
 class MpmMethod final : public Method<Dim> {
  public:
@@ -55,6 +75,7 @@ class MpmMethod final : public Method<Dim> {
                            c.contact_law == crack::ContactLaw::Friction
                                ? (" mu=" + std::to_string(c.friction)).c_str() : "",
                            c.detection == crack::Detection::Volume ? "volume" : "displacement"));
+    describe_body_contact(m, out);
     out.push_back(format("output: every %.6g s (%zu fields), global.csv every %.6g s", m.output.interval,
                          m.output.fields.size(), m.output.global_interval));
     if (m.crack_tips) {

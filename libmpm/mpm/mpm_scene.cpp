@@ -9,6 +9,7 @@
 #include "libmpm/geometry/shape.hpp"
 #include "libmpm/core/json_reader.hpp"
 #include "libmpm/core/units.hpp"
+#include "libmpm/mpm/body_contact_scene.hpp"
 #include "libmpm/mpm/crack_scene.hpp"
 #include "libmpm/scene/bodies.hpp"
 #include "libmpm/scene/budget.hpp"
@@ -114,7 +115,7 @@ static TractionLoad<Dim> resolve_traction(const Model<Dim>& m, const std::vector
 template <int Dim>
 Model<Dim> build_model(const json& scene) {
   ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "resolution", "grid", "mpm", "materials",
-                               "bodies", "loads", "cracks", "crack_tips", "damping", "static", "time", "output", "checks"});
+                               "bodies", "contact", "loads", "cracks", "crack_tips", "damping", "static", "time", "output", "checks"});
   if (top.has("method") && top.string("method") != "mpm")  // peridynamics: libmpm/pd/pd_scene.cpp
     throw SceneError("method", "build_model reads MPM scenes only (\"method\": \"mpm\")");
   Model<Dim> m;
@@ -275,12 +276,19 @@ Model<Dim> build_model(const json& scene) {
     m.bodies.push_back(b);
   }
 
+  // --- contact between bodies: mpm/body_contact_scene.cpp ---------------------------------------
+  if (top.has("contact")) {
+    std::vector<std::string> names;
+    for (const auto& b : m.bodies) names.push_back(b.name);
+    m.body_contact = read_body_contact(scene, names);
+  }
   {
     std::vector<std::pair<const Vec<Dim>*, std::size_t>> points;
     for (const auto& b : m.bodies) points.emplace_back(&m.particles.x[b.first], b.count);
     for (auto& w : scene::overlap_warnings<Dim>(specs, points, "particle",
                                                 "MPM gives the overlap the mass of both, and their particles share "
-                                                "grid nodes, so the two stick together"))
+                                                "grid nodes, so the two stick together (or, where \"contact\" names both, "
+                                                "contact pushes them apart from the first step)"))
       m.warnings.push_back(std::move(w));
   }
 

@@ -34,7 +34,7 @@ class MpmStepper final : public Stepper<Dim> {
     all_linear_elastic_ = true;
     for (const auto& mat : m.materials)
       all_linear_elastic_ = all_linear_elastic_ && dynamic_cast<const LinearElastic<Dim>*>(mat.get()) != nullptr;
-    if (!m.cracks.empty()) cf_ = std::make_unique<CrackFields<Dim, SF>>(m, grid_, kin_);
+    if (!m.cracks.empty() || m.body_contact.active()) cf_ = std::make_unique<CrackFields<Dim, SF>>(m, grid_, kin_);
   }
 
   std::string take_warning() override {
@@ -42,8 +42,9 @@ class MpmStepper final : public Stepper<Dim> {
     const long o = cf_->take_overflow();
     if (o > 0)
       return "step " + std::to_string(step_) + ": " + std::to_string(o) +
-             " particle-node pair(s) needed a fifth velocity field at a node (more than two cracks meet there, or "
-             "one line crosses three cracks); they used the node's ordinary field";
+             " particle-node pair(s) needed a fifth velocity field at a node (more than two cracks meet there, "
+             "one line crosses three cracks, or too many bodies in contact meet there); they used the node's "
+             "ordinary field";
     return {};
   }
 

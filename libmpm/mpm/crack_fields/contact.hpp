@@ -48,8 +48,6 @@ class CrackContact : public CrackMotion<Dim, SF> {
     if constexpr (Dim == 3) cell_volume *= G_.h;
     update_spins();
     flag_closing_surfaces(dt);
-    if (!step_started_) touching_.assign(block_node_.size() * kPairSlots, 0);
-    step_started_ = true;
     const std::size_t nb = block_node_.size();
 #pragma omp parallel for schedule(static) if (parallel_points(nb))
     for (std::size_t b = 0; b < nb; ++b) {
@@ -60,40 +58,59 @@ class CrackContact : public CrackMotion<Dim, SF> {
           const int32_t xi = i == 0 ? -1 : static_cast<int32_t>(b * kExtra + i - 1);
           const int32_t xj = static_cast<int32_t>(b * kExtra + j - 1);
           const uint32_t ki = i == 0 ? 0u : block_key_[xi], kj = block_key_[xj];
-          int crack, rank_i, rank_j;
-          if (!differ_in_one_crack(ki, kj, crack, rank_i, rank_j)) continue;
-          const int32_t xa = rank_i > rank_j ? xi : xj, xb = rank_i > rank_j ? xj : xi;
+          // Fields of two bodies (body_groups.hpp), or of one body on two sides of one crack.
+          const int gi = bodies_ ? field_group(n, ki) : 0, gj = bodies_ ? field_group(n, kj) : 0;
+          const bool two_bodies = gi != gj;
+          int crack = 0, rank_i = 0, rank_j = 0;
+          if (!two_bodies && !differ_in_one_crack(ki, kj, crack, rank_i, rank_j)) continue;
+          const int32_t xa = rank_i >= rank_j ? xi : xj, xb = rank_i >= rank_j ? xj : xi;
           const double ma = mass(n, xa), mb = mass(n, xb);
           if (!(ma > 0.0 && mb > 0.0)) continue;
-          V nrm = normal_sum(xi, crack) + normal_sum(xj, crack);
+          // The normal from a to b: the crack's (from above to below), or between bodies the
+          // difference of the two fields' sums m_p grad S (each points out of its own body), or the
+          // sum of the body the scene names as the pair's flat face (body_normal).
+          V nrm;
+          if (!two_bodies) nrm = normal_sum(xi, crack) + normal_sum(xj, crack);
+          else {
+            const int from = contact_.normal_group(gi, gj);
+            nrm = from == gi ? mass_gradient(b, xa) : from == gj ? V(-mass_gradient(b, xb))
+                                                                : V(mass_gradient(b, xa) - mass_gradient(b, xb));
+          }
           const double len = nrm.norm();
           if (!(len > 0.0)) continue;
-          nrm /= len;  // from above to below
-          const crack::ExplicitCrack<Dim>& c = cracks_[crack];
-          const Law law = c.contact_law;
+          nrm /= len;
+          // A pair of bodies the scene did not declare sticks, as on one field (no law).
+          const crack::ContactSettings* c = two_bodies ? contact_.law(gi, gj) : &cracks_[crack];
+          const Law law = c ? c->contact_law : Law::Stick;
           if (law == Law::None) continue;
           V& pa = momentum(n, xa);
           V& pb = momentum(n, xb);
           // The fields' velocities are those of their mass centres, which lie on either side of the
           // crack: in a body spinning at omega they differ by omega x (ca - cb) while the faces stay
-          // together. The faces' relative velocity is what remains after the crack's own spin (crack_spin).
-          const Spin w = spin_[crack];
+          // together. The faces' relative velocity is what remains after the crack's own spin
+          // (crack_spin). Two bodies share no spin.
+          const Spin w = two_bodies ? no_spin() : spin_[crack];
           const V ca = field_centre(n, xa), cb = field_centre(n, xb);
           const V rigid = cross(w, ca - cb);
           const V dv = pa / ma - pb / mb - rigid;
           const double approach = dv.dot(nrm);  // > 0: the faces move towards each other
           uint8_t& touched = touching_[b * kPairSlots + i * kFieldSlots + j];  // earlier in this step
-          bool touching = touched;
+          bool touching = touched || !c;
           const bool may_add = !touching && !(back_compute && std::min(ma, mb) < kMinForcedShare * (ma + mb));
           if (!may_add) {
             // (kept from earlier in the step, or not Task 4's to add)
-          } else if (c.detection == crack::Detection::Volume) {
+          } else if (c->detection == crack::Detection::Volume) {
             // Eq. 10. An opening g takes about g h (1 - d/h) from the volume of a node at distance d
             // from the crack, so approaching faces count as touching while g <= (1 - v_sep) h / (1 - d/h):
             // the gap at which they stop depends on where the crack lies among the nodes (0.1 cell on
             // a node row, 0.2 cell half a cell off; docs/validation.md, 2D cracks item 4).
             const double vrel = volume_[b] / cell_volume;
-            touching = vrel > c.v_contact || (vrel >= c.v_sep && approach > 0.0);
+            touching = vrel > c->v_contact || (vrel >= c->v_sep && approach > 0.0);
+          } else if (c->detection == crack::Detection::Position) {
+            // Two bodies: their fields' mass centres, each within its own body, come closer along the
+            // normal than d_contact cells by the end of the step (the centres of two bodies pressed
+            // together at a node lie about 2/3 of a cell apart).
+            touching = approach > 0.0 && (cb - ca).dot(nrm) - dt * approach < c->d_contact * G_.h;
           } else {
             // Seed 000 eqs. 69-70, with the displacements predicted to the end of the step
             // (u + dt v): testing the start-of-step overlap alone lets the faces pass each other
@@ -120,9 +137,16 @@ class CrackContact : public CrackMotion<Dim, SF> {
           }
           // The node carries a crack point whose faces touch or would cross within the step
           // (flag_closing_surfaces): contact, whatever the node-averaged indicator says.
-          if (may_add && !touching && approach > 0.0 && closing_[b * cracks_.size() + crack]) touching = true;
+          if (may_add && !touching && approach > 0.0 && !two_bodies && closing_[b * cracks_.size() + crack])
+            touching = true;
           if (!touching) continue;
           touched = 1;
+          // Bodies press but do not pull: the exchange of momentum (Task 4) between the fields of two
+          // bodies acts only while they approach. (Tasks 2 and 6c, which correct the velocities that
+          // strain the particles, keep a touching pair together both ways. Pushing only there too
+          // gained energy as colliding disks came apart, +0.5 % at 1 mm cells, +1 % at 0.5 mm; pulling
+          // in Task 4 too glued a block resting under gravity to its slope.)
+          if (two_bodies && back_compute && law != Law::Stick && !(approach > 0.0)) continue;
           // Stick: both fields take the centre-of-mass velocity (eq. 13), up to the rigid spin's
           // difference between their mass centres (the change that makes dv zero).
           const V stick = (ma * pb - mb * pa) / (ma + mb) + (ma * mb / (ma + mb)) * rigid;
@@ -136,7 +160,7 @@ class CrackContact : public CrackMotion<Dim, SF> {
               // Coulomb: the tangential change needed to stick, capped at mu |normal change|
               // (eqs. 14-18 in momentum form).
               const V dpt = stick - dp;
-              const double t = dpt.norm(), cap = c.friction * std::fabs(dpn);
+              const double t = dpt.norm(), cap = c->friction * std::fabs(dpn);
               dp += t <= cap ? dpt : dpt * (cap / t);
             }
           }
@@ -151,13 +175,16 @@ class CrackContact : public CrackMotion<Dim, SF> {
     costs::leave(was);
   }
   // A new step: its pairs start apart (called once the step's fields are allocated).
-  void begin_step_contact() { step_started_ = false; }
+  void begin_step_contact() { touching_.assign(block_node_.size() * kPairSlots, 0); }
+  // The mass gradient of field x of block b (x < 0: the ordinary field).
+  V mass_gradient(std::size_t b, int32_t x) const { return x < 0 ? grad0_[b] : grad_[x]; }
 
  protected:
   using typename Base::SideFields, typename Base::Spin;
   using Base::block_key_, Base::block_node_, Base::block_nslots_, Base::cm_velocity, Base::crack_spin, Base::cracks_;
   using Base::cross, Base::field_centre, Base::grid_, Base::mass_, Base::rot_, Base::spin_, Base::update_spins;
   using Base::vm_;
+  using Base::bodies_, Base::contact_, Base::field_group, Base::grad_, Base::grad0_, Base::no_spin;
   using Base::disp0_, Base::disp_, Base::force, Base::G_, Base::is_tip, Base::kExtra, Base::left_normal;
   using Base::linear_nodes, Base::mass, Base::momentum, Base::node_block_, Base::normal_sum;
   using Base::parallel_points, Base::side_fields, Base::side_velocity, Base::volume_;
@@ -208,7 +235,7 @@ class CrackContact : public CrackMotion<Dim, SF> {
     int cr[4], ra[4], rb[4], n = 0;
     auto add = [&](uint32_t key, int* r) {
       for (int c = 0; c < 2; ++c) {
-        const uint32_t code = (key >> (16 * c)) & 0xffffu;
+        const uint32_t code = crack::key_code(key, c);
         if (!code) continue;
         const int k = static_cast<int>((code - 1) / 2), rank = (code - 1) % 2 ? -1 : 1;
         int i = 0;
@@ -234,7 +261,6 @@ class CrackContact : public CrackMotion<Dim, SF> {
   static constexpr int kFieldSlots = 1 + kExtra, kPairSlots = kFieldSlots * kFieldSlots;
   // (1 - 1/2)^2 / 2: with linear shape functions, material more than half a cell beyond the crack.
   static constexpr double kMinForcedShare = 0.125;
-  bool step_started_ = false;
   std::vector<uint8_t> touching_;  // per block and field pair (i, j): touched earlier in this step
   std::vector<uint8_t> closing_;  // per block and crack: a crack point's faces close (contact())
 };

@@ -83,6 +83,7 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   using Base::cell_of, Base::node_position, Base::parallel_points, Base::pos0_, Base::pos_;
   using Base::block_key_, Base::block_node_, Base::kin_, Base::xkin_;
   using Base::crack_epoch_, Base::index_epoch_, Base::note_crack_state;
+  using Base::bodies_, Base::crack_group_, Base::group_tag;
   static constexpr double kProbe = 1e-3;  // cells: how far above/below a surface its probe sits
 
   CrackMotion(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin) : Base(m, grid, kin) {
@@ -171,7 +172,7 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   // key names (the ordinary field: the crack of the block's first extra field).
   Spin field_spin(int32_t b, int s) const {
     const uint32_t key = block_key_[b * kExtra + (s < 0 ? 0 : s)];
-    const uint32_t code = key & 0xffffu ? key & 0xffffu : key >> 16;
+    const uint32_t code = crack::key_code(key, 0) ? crack::key_code(key, 0) : crack::key_code(key, 1);
     return code ? spin_[(code - 1) / 2] : no_spin();
   }
   // The fields' nodal velocities at multi-field nodes, carried from each field's mass centre to the
@@ -292,8 +293,9 @@ class CrackMotion : public FieldSlots<Dim, SF> {
         SideFields& sf = out[2 * i + side];
         for (int e = 0; e < sk.count; ++e) {
           if (sk.key[e] == kOverflow) continue;
-          const int32_t xs = sk.key[e] == 0 ? -1 : extra_field(sk.node[e], sk.key[e]);
-          if (sk.key[e] != 0 && xs < 0) continue;  // the node has no field for that side
+          const uint32_t key = bodies_ ? sk.key[e] | group_tag(crack_group_[ci], sk.node[e]) : sk.key[e];
+          const int32_t xs = key == 0 ? -1 : extra_field(sk.node[e], key);
+          if (key != 0 && xs < 0) continue;  // the node has no field for that side
           sf.node[sf.count] = sk.node[e], sf.w[sf.count] = sk.w[e], sf.field[sf.count] = xs;
           ++sf.count;
         }

@@ -47,7 +47,7 @@ class FieldSlots : public Classification<Dim, SF> {
 
  protected:
   using Base::cracks_, Base::G_, Base::key_any_, Base::kOverflow, Base::N, Base::near_, Base::near_st_;
-  using Base::pair_key_, Base::pair_seg_;
+  using Base::pair_key_, Base::pair_seg_, Base::bodies_;
 
   FieldSlots(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin)
       : Base(m), grid_(grid), kin_(kin) {
@@ -109,7 +109,7 @@ class FieldSlots : public Classification<Dim, SF> {
         pair_slot_[q] = static_cast<uint8_t>(slot + 1);
         slot_any_[k] = 1;
         for (int c = 0; c < 2; ++c) {
-          const uint32_t code = (key >> (16 * c)) & 0xffffu;
+          const uint32_t code = crack::key_code(key, c);
           if (!code) continue;
           const int crack = static_cast<int>((code - 1) / 2);
           normals[2 * (b * kExtra + slot) + c] += seg_normal_[crack][pair_seg_[2 * q + c]];
@@ -128,6 +128,10 @@ class FieldSlots : public Classification<Dim, SF> {
     disp0_.assign(block_node_.size(), V::Zero());
     pos0_.assign(block_node_.size(), V::Zero());
     rot_.assign(block_node_.size(), 0.0);
+    if (bodies_) {
+      grad_.assign(ns, V::Zero());
+      grad0_.assign(block_node_.size(), V::Zero());
+    }
   }
 
   // The extra-field slot of node n holding `key`, or -1 when the node has none.
@@ -145,7 +149,7 @@ class FieldSlots : public Classification<Dim, SF> {
     const uint32_t key = block_key_[x];
     V s = V::Zero();
     for (int c = 0; c < 2; ++c) {
-      const uint32_t code = (key >> (16 * c)) & 0xffffu;
+      const uint32_t code = crack::key_code(key, c);
       if (code && static_cast<int>((code - 1) / 2) == crack) s += normal_[2 * x + c];
     }
     return s;
@@ -177,6 +181,10 @@ class FieldSlots : public Classification<Dim, SF> {
   // displacement detection, the mass-weighted in-plane rotation of all the node's fields (per block).
   std::vector<V> pos_, pos0_;
   std::vector<double> rot_;
+  // With contact between bodies: each field's sum m_p grad S_n(x_p) (grad_ per slot, grad0_ the
+  // ordinary field's, per block), minus its mass gradient at the node: it points out of the field's
+  // body, and the difference across two bodies' fields is their contact normal (contact.hpp).
+  std::vector<V> grad_, grad0_;
   std::vector<NodeKinematics<Dim>> xkin_;
   long overflow_ = 0;
   std::vector<std::vector<V>> seg_normal_;  // per crack and segment: segment_normal, for allocate_fields

@@ -1,0 +1,157 @@
+// Layer of the crack fields (libmpm/mpm/crack_fields.hpp; layering: grid_cells.hpp): contact between
+// bodies (Model::body_contact). Bodies in declared contact have field groups of their own; where
+// particles of two groups reach one node, each group moves on its own field there, as the two faces
+// of a crack do, and contact.hpp couples them by the pair's law. One machinery for both: a pair's
+// field key carries its crack codes (classification.hpp) and, at a node that several groups reach,
+// a body tag in bits 24-31: 0 for the node's lowest group (which keeps the node's ordinary field, as
+// the uncracked side of a crack does) and g + 1 for group g. A node that one group alone reaches has
+// no tag, so a body far from the others costs nothing.
+//
+// Which particles take the multi-field paths ("near"): those within reach of another group. Each
+// step marks every cell with the groups of the particles in it and grows the marks by the cells
+// over which two particles can share a node (1 linear, 3 uGIMP); a particle is near when its cell's
+// grown mark holds two groups. So every particle with a weight at a node that two groups reach is
+// near (a far one's nodes belong to its group alone, and its single field there is right), and the
+// node marks, summed from the near particles' stencils (mark_body_nodes), are exact at such nodes.
+#pragma once
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "libmpm/core/parallel.hpp"
+#include "libmpm/mpm/crack_fields/spatial_index.hpp"
+#include "libmpm/mpm/model.hpp"
+
+namespace cleave::crack_fields {
+
+template <int Dim, class SF>
+class BodyGroups : public SpatialIndex<Dim, SF> {
+  using Base = SpatialIndex<Dim, SF>;
+  using V = Vec<Dim>;
+
+ public:
+  static constexpr int kTagShift = 24;
+
+  // The crack index's near test, and near another body's group.
+  struct NearTest {
+    typename Base::NearTest crack;
+    const uint32_t* cell_group;  // grown group marks per cell; null without contact between bodies
+    Vec<Dim> origin;
+    double inv_h;
+    int cells[Dim];
+    uint8_t in_box(const V& x) const { return crack.in_box(x) | static_cast<uint8_t>(cell_group != nullptr); }
+    uint8_t operator()(const V& x) const {
+      if (crack.in_box(x) && crack(x)) return 1;
+      if (!cell_group) return 0;
+      int64_t c = 0;
+      for (int d = 0; d < Dim; ++d) {
+        const double f = (x[d] - origin[d]) * inv_h;
+        if (!(f >= 0.0 && f < cells[d])) return 0;
+        c = c * cells[d] + static_cast<int64_t>(f);
+      }
+      return std::popcount(cell_group[c]) > 1;
+    }
+  };
+  NearTest near_test() const {
+    NearTest t{Base::near_test(), bodies_ ? grown_.data() : nullptr, G_.origin, inv_h_, {}};
+    for (int d = 0; d < Dim; ++d) t.cells[d] = cells_[d];
+    return t;
+  }
+  // The crack index, and each cell's groups (only with contact between bodies).
+  void prepare_index() {
+    Base::prepare_index();
+    if (bodies_) mark_cells();
+  }
+  bool bodies_active() const { return bodies_; }
+
+ protected:
+  using Base::cell_count, Base::cell_of, Base::cells_, Base::G_, Base::inv_h_;
+
+  explicit BodyGroups(Model<Dim>& m) : Base(m), contact_(m.body_contact), X_(m.particles.x) {
+    bodies_ = contact_.active();
+    if (!bodies_) return;
+    group_.assign(m.particles.size(), 0);
+    for (std::size_t k = 0; k < m.bodies.size(); ++k)
+      for (std::size_t p = m.bodies[k].first; p < m.bodies[k].first + m.bodies[k].count; ++p)
+        group_[p] = contact_.group[k];
+    raw_.assign(cell_count(), 0);
+    grown_.assign(cell_count(), 0);
+    node_group_.assign(G_.node_count(), 0);
+    reach_ = SF::K == 2 ? 1 : 3;  // cells between two particles that can weight one node
+    // Each crack's group: that of the particle nearest its first point.
+    crack_group_.assign(m.cracks.size(), 0);
+    for (std::size_t ci = 0; ci < m.cracks.size(); ++ci) {
+      double best = INFINITY;
+      for (std::size_t p = 0; p < X_.size(); ++p) {
+        const double d = (X_[p] - m.cracks[ci].points[0]).squaredNorm();
+        if (d < best) best = d, crack_group_[ci] = group_[p];
+      }
+    }
+  }
+
+  // The groups of the particles in each cell, grown by reach_ cells along every axis.
+  void mark_cells() {
+    std::fill(raw_.begin(), raw_.end(), 0u);
+    const std::size_t np = X_.size();
+#pragma omp parallel for schedule(static) if (worth_parallel(np))
+    for (std::size_t p = 0; p < np; ++p) {
+      const int64_t c = cell_of(X_[p]);
+      if (c >= 0) std::atomic_ref<uint32_t>(raw_[c]).fetch_or(1u << group_[p], std::memory_order_relaxed);
+    }
+    // Separable: along each axis, every cell takes the marks within reach_ cells.
+    std::vector<uint32_t>* src = &raw_;
+    std::vector<uint32_t>* dst = &grown_;
+    for (int d = 0; d < Dim; ++d) {
+      int64_t stride = 1;
+      for (int e = d + 1; e < Dim; ++e) stride *= cells_[e];
+      const int64_t len = cells_[d], total = static_cast<int64_t>(cell_count());
+      const uint32_t* s = src->data();
+      uint32_t* t = dst->data();
+#pragma omp parallel for schedule(static) if (worth_parallel(static_cast<std::size_t>(total)))
+      for (int64_t c = 0; c < total; ++c) {
+        const int64_t i = (c / stride) % len;
+        uint32_t m = 0;
+        for (int64_t k = std::max<int64_t>(0, i - reach_); k <= std::min<int64_t>(len - 1, i + reach_); ++k)
+          m |= s[c + (k - i) * stride];
+        t[c] = m;
+      }
+      std::swap(src, dst);
+    }
+    if (src != &grown_) grown_.swap(raw_);  // (the last pass wrote raw_)
+  }
+
+  // Node marks: cleared at the start of a step's classification, then set from every near particle's
+  // stencil (weighted nodes only).
+  void clear_node_groups() { std::fill(node_group_.begin(), node_group_.end(), 0u); }
+  void mark_node(int64_t n, std::size_t p) {
+    std::atomic_ref<uint32_t>(node_group_[n]).fetch_or(1u << group_[p], std::memory_order_relaxed);
+  }
+  // The body tag of particle p's field at node n (0 where one group alone reaches the node, or p is
+  // of the node's lowest group).
+  uint32_t body_tag(std::size_t p, int64_t n) const { return bodies_ ? group_tag(group_[p], n) : 0u; }
+  // The same for a field of group g (a crack's surfaces: the group of the body the crack lies in).
+  uint32_t group_tag(uint32_t g, int64_t n) const {
+    const uint32_t m = node_group_[n];
+    if (std::popcount(m) < 2) return 0;
+    return g == static_cast<uint32_t>(std::countr_zero(m)) ? 0u : (g + 1) << kTagShift;
+  }
+  // The group of the field with `key` at node n.
+  int field_group(int64_t n, uint32_t key) const {
+    const uint32_t tag = key >> kTagShift;
+    return tag ? static_cast<int>(tag) - 1 : std::countr_zero(node_group_[n] | (1u << 31));
+  }
+
+  const BodyContact& contact_;
+  const std::vector<Vec<Dim>>& X_;
+  bool bodies_ = false;
+  int reach_ = 1;
+  std::vector<uint8_t> group_;         // per particle: its body's group
+  std::vector<uint32_t> raw_, grown_;  // per cell: group marks, then grown (the near test's)
+  std::vector<uint32_t> node_group_;   // per node: the groups of the near particles weighting it
+  std::vector<uint8_t> crack_group_;   // per crack: the group of the body it lies in
+};
+
+}  // namespace cleave::crack_fields
