@@ -208,14 +208,18 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   }
 
   // The same with contact between bodies (which detect it by position or volume): then also each
-  // field's sum m_p grad S, from which contact takes the normal between two bodies.
+  // field's sum m_p grad S, from which contact takes the normal between two bodies, and its volume.
   void extrapolate_with_gradients(std::size_t k, const St& s) {
     if (need_disp_) extrapolate<true, true>(k, s);
     else extrapolate<true, false>(k, s);
-    const double mp = P_.mass[static_cast<std::size_t>(near_[k])];
-    for_each_pair(k, s, [&](int64_t n, int32_t x, double, const V& g) {
-      if (x >= 0) grad_[x] += mp * g;
-      else if (node_block_[n] >= 0) grad0_[node_block_[n]] += mp * g;
+    const std::size_t p = static_cast<std::size_t>(near_[k]);
+    const double mp = P_.mass[p];
+    const auto& e = P_.strain[p];
+    double vol = area0_[p] * (1.0 + e[0]) * (1.0 + e[1]);
+    if constexpr (Dim == 3) vol *= 1.0 + e[2];
+    for_each_pair(k, s, [&](int64_t n, int32_t x, double w, const V& g) {
+      if (x >= 0) grad_[x] += mp * g, fvol_[x] += vol * w;
+      else if (node_block_[n] >= 0) grad0_[node_block_[n]] += mp * g, fvol0_[node_block_[n]] += vol * w;
     });
   }
 
@@ -322,7 +326,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   using Base::collect_near_particles, Base::cracks_, Base::disp0_, Base::disp_, Base::extra_field, Base::pos0_, Base::pos_;
   using Base::force_, Base::grid_, Base::kin_, Base::kOverflow, Base::mass_, Base::momentum_, Base::near_;
   using Base::near_flag_, Base::near_index_, Base::near_st_, Base::node_block_, Base::P_, Base::pair_slot_;
-  using Base::bodies_, Base::body_tag, Base::grad_, Base::grad0_;
+  using Base::bodies_, Base::body_tag, Base::fvol_, Base::fvol0_, Base::grad_, Base::grad0_;
   using Base::rot_, Base::side_fields_, Base::side_valid_, Base::slot_any_, Base::volume_, Base::xkin_;
 
   std::vector<double> area0_;  // per particle: its area (2D) or volume (3D) at zero strain (eq. 25)

@@ -131,6 +131,8 @@ class FieldSlots : public Classification<Dim, SF> {
     if (bodies_) {
       grad_.assign(ns, V::Zero());
       grad0_.assign(block_node_.size(), V::Zero());
+      fvol_.assign(ns, 0.0);
+      fvol0_.assign(block_node_.size(), 0.0);
     }
   }
 
@@ -185,6 +187,7 @@ class FieldSlots : public Classification<Dim, SF> {
   // ordinary field's, per block), minus its mass gradient at the node: it points out of the field's
   // body, and the difference across two bodies' fields is their contact normal (contact.hpp).
   std::vector<V> grad_, grad0_;
+  std::vector<double> fvol_, fvol0_;  // the same fields' volumes, sum V_p S (a body's share of a node)
   std::vector<NodeKinematics<Dim>> xkin_;
   long overflow_ = 0;
   std::vector<std::vector<V>> seg_normal_;  // per crack and segment: segment_normal, for allocate_fields
