@@ -247,3 +247,42 @@ TEST(BodyContact, TwoElasticSpheresCollidingHeadOnTouchForHertzsDurationWithinTe
 
 }  // namespace
 }  // namespace cleave
+
+namespace cleave {
+namespace {
+
+// J at a crack tip counts only the cracked body: a plate (crack tip 2 cells from its right edge)
+// sliding past a block at rest 0.5 mm away, frictionless, translates, so J is zero (2D cracks pass
+// translation exactly; alone it reads 7e-33 J/m^2); the block's particles within the contour's reach, at
+// rest while the tip moves, read J = 1.38 J/m^2 when they counted.
+TEST(BodyContact, JAtACrackTipCountsOnlyTheCrackedBody) {
+  auto J = [](bool block) {
+    json s = {{"units", {{"length", "mm"}, {"stress", "MPa"}, {"density", "g/cm3"}, {"velocity", "m/s"}, {"time", "ms"}}},
+              {"analysis", {{"type", "plane_strain"}}},
+              {"resolution", 1},
+              {"grid", {{"min", {-15, -10}}, {"max", {10, 10}}}},
+              {"mpm", {{"shape_function", "ugimp"}, {"stress_update", "USAVG"}}},
+              {"materials", {test::material("steel", 200e3, 0.3, 7.8)}},
+              {"bodies", {{{"name", "plate"}, {"material", "steel"},
+                           {"shape", {{"type", "rectangle"}, {"min", {-10, -5}}, {"max", {0, 5}}}}, {"velocity", {0, 1}}}}},
+              {"cracks", {{{"name", "c"}, {"from", {-10, 0}}, {"to", {-2, 0}}, {"segment_length", 1}}}},
+              {"crack_tips", json::object()},
+              {"time", {{"end", 1e-3}, {"cfl", 0.5}}}};
+    if (block) {
+      s["bodies"].push_back({{"name", "block"}, {"material", "steel"},
+                             {"shape", {{"type", "rectangle"}, {"min", {0.5, -5}}, {"max", {5, 5}}}}});
+      s["contact"] = {{{"bodies", {"plate", "block"}}, {"law", "frictionless"}}};
+    }
+    Model<2> m = build_model<2>(s);
+    auto st = make_stepper<2>(m);
+    EXPECT_FALSE(test::advance(*st, 5));
+    double j = 0;
+    for (const auto& t : st->crack_tip_parameters(*m.crack_tips)) j = std::max(j, std::fabs(t.J1));
+    return j;
+  };
+  const double alone = J(false), beside = J(true);
+  EXPECT_LT(beside, 1e-6) << "alone " << alone;
+}
+
+}  // namespace
+}  // namespace cleave

@@ -84,10 +84,15 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
   for (const auto& b : m.bodies)
     for (std::size_t p = b.first; p < b.first + b.count; ++p) thickness[p] = b.thickness;
 
+  // With contact between bodies, only the cracked body's particles: another body's share nodes with it
+  // near the contour but move on fields of their own (the step's keys carry body tags; these do not).
+  const std::vector<uint8_t> groups = particle_groups(m);
   std::vector<crack::TipRecord> out;
   for (const auto& c : m.cracks)
     for (int end = 0; end < 2; ++end) {
       if (!c.tip[end]) continue;
+      const uint8_t own = groups.empty() ? 0 : crack_group(m, groups, static_cast<std::size_t>(c.id));
+      const auto other = [&](std::size_t p) { return !groups.empty() && groups[p] != own; };
       const crack::TipFrame f = crack::tip_frame(c, end);
       crack::TipRecord rec;
       rec.crack = c.id;
@@ -110,7 +115,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         double msum = 0.0, mth = 0.0;
         V mx = V::Zero(), mv = V::Zero();
         for (std::size_t p = 0; p < P.size(); ++p) {
-          if ((P.x[p] - f.tip).norm() > fit) continue;
+          if ((P.x[p] - f.tip).norm() > fit || other(p)) continue;
           const double mp = P.mass[p];
           msum += mp, mth += mp * P.rotation[p], mx += mp * P.x[p], mv += mp * P.v[p];
         }
@@ -120,7 +125,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
           mx /= msum, mv /= msum;
           double num = 0.0, den = 0.0;
           for (std::size_t p = 0; p < P.size(); ++p) {
-            if ((P.x[p] - f.tip).norm() > fit) continue;
+            if ((P.x[p] - f.tip).norm() > fit || other(p)) continue;
             const V r = P.x[p] - mx, dv = P.v[p] - mv;
             num += P.mass[p] * (r.x() * dv.y() - r.y() * dv.x());
             den += P.mass[p] * r.squaredNorm();
@@ -141,7 +146,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       double nearest_d = INFINITY;
       for (std::size_t p = 0; p < P.size(); ++p) {
         const double d = (P.x[p] - f.tip).norm();
-        if (d > reach) continue;
+        if (d > reach || other(p)) continue;
         if (d < nearest_d) nearest_d = d, nearest = p;
         if (ts.volume_term && crack::inside_contour(f, ts, h, P.x[p])) inside.push_back(p);
         const auto& s = P.stress[p];

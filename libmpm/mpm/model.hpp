@@ -1,6 +1,8 @@
 // Everything a run needs, built from a scene and expressed in SI: grid, bodies as particles,
 // materials, loads, grid conditions and the solver settings. Only what the scene declares exists.
 #pragma once
+#include <cmath>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <set>
@@ -61,5 +63,27 @@ struct Model : RunSettings {
   // node velocities; the crack-front parameters need the planes (a front node on one is mirrored).
   std::vector<std::pair<int, double>> symmetry_planes;
 };
+
+// With contact between bodies: each particle's field group (body_contact.hpp), and each crack's, that of
+// the particle nearest its first point (the body the crack lies in). Empty without it.
+template <int Dim>
+std::vector<uint8_t> particle_groups(const Model<Dim>& m) {
+  std::vector<uint8_t> g;
+  if (!m.body_contact.active()) return g;
+  g.assign(m.particles.size(), 0);
+  for (std::size_t k = 0; k < m.bodies.size(); ++k)
+    for (std::size_t p = m.bodies[k].first; p < m.bodies[k].first + m.bodies[k].count; ++p) g[p] = m.body_contact.group[k];
+  return g;
+}
+template <int Dim>
+uint8_t crack_group(const Model<Dim>& m, const std::vector<uint8_t>& groups, std::size_t crack) {
+  uint8_t best_g = 0;
+  double best = INFINITY;
+  for (std::size_t p = 0; p < groups.size(); ++p) {
+    const double d = (m.particles.x[p] - m.cracks[crack].points[0]).squaredNorm();
+    if (d < best) best = d, best_g = groups[p];
+  }
+  return best_g;
+}
 
 }  // namespace cleave

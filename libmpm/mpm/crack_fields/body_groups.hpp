@@ -73,23 +73,13 @@ class BodyGroups : public SpatialIndex<Dim, SF> {
   explicit BodyGroups(Model<Dim>& m) : Base(m), contact_(m.body_contact), X_(m.particles.x) {
     bodies_ = contact_.active();
     if (!bodies_) return;
-    group_.assign(m.particles.size(), 0);
-    for (std::size_t k = 0; k < m.bodies.size(); ++k)
-      for (std::size_t p = m.bodies[k].first; p < m.bodies[k].first + m.bodies[k].count; ++p)
-        group_[p] = contact_.group[k];
+    group_ = particle_groups(m);
     raw_.assign(cell_count(), 0);
     grown_.assign(cell_count(), 0);
     node_group_.assign(G_.node_count(), 0);
     reach_ = SF::K == 2 ? 1 : 3;  // cells between two particles that can weight one node
-    // Each crack's group: that of the particle nearest its first point.
-    crack_group_.assign(m.cracks.size(), 0);
-    for (std::size_t ci = 0; ci < m.cracks.size(); ++ci) {
-      double best = INFINITY;
-      for (std::size_t p = 0; p < X_.size(); ++p) {
-        const double d = (X_[p] - m.cracks[ci].points[0]).squaredNorm();
-        if (d < best) best = d, crack_group_[ci] = group_[p];
-      }
-    }
+    crack_group_.resize(m.cracks.size());
+    for (std::size_t ci = 0; ci < m.cracks.size(); ++ci) crack_group_[ci] = crack_group(m, group_, ci);
   }
 
   // The groups of the particles in each cell, grown by reach_ cells along every axis.
