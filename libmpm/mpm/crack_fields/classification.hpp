@@ -34,7 +34,7 @@ class Classification : public BodyGroups<Dim, SF> {
   using typename Base::Entry;
   using Base::cell_head_, Base::cell_of, Base::cracks_, Base::entries_, Base::G_, Base::inv_h_;
   using Base::node_position, Base::stride_, Base::tri_hi_, Base::tri_ids_, Base::tri_lo_;
-  using Base::bodies_, Base::body_tag, Base::clear_node_groups, Base::mark_node;
+  using Base::bodies_, Base::body_tag;
   using Base::crack_epoch_, Base::index_epoch_, Base::tight_, Base::tight_begin_, Base::tight_head, Base::tight_ids_;
   static constexpr uint32_t kOverflow = crack::kFieldKeyOverflow;  // a line crossing three or more cracks
 
@@ -158,33 +158,18 @@ class Classification : public BodyGroups<Dim, SF> {
   // particle, nor can the end vertices that the narrowed range shares with such segments, so
   // polyline_crossing's rules (crossing.hpp: a contact only at a vertex on the line, a range end
   // treated as a tip) give the same side and segment on the narrowed range as on the entry's.
-  // With contact between bodies, the node marks first (every near particle's stencil), then each
-  // key gets its body tag (body_groups.hpp); 3D keeps no keys from the last step (their tags change).
+  // With contact between bodies, each key gets its body tag (body_groups.hpp, from the node marks of
+  // prepare_index); 3D keeps no keys from the last step (their tags change).
   void classify_pairs() {
     const std::size_t nn = near_.size();
     pair_key_.resize(nn * N);
     pair_seg_.resize(nn * N * 2);
     near_st_.resize(nn);
     key_any_.resize(nn);
-    if (bodies_) {
-      kept_epoch_ = ~uint64_t{0};
-      mark_body_nodes(nn);
-    }
+    if (bodies_) kept_epoch_ = ~uint64_t{0};
     if constexpr (Dim == 3) classify_pairs3(nn);
     else classify_pairs2(nn);
     if (bodies_) tag_body_fields(nn);
-  }
-  void mark_body_nodes(const std::size_t nn) {
-    clear_node_groups();
-#pragma omp parallel for schedule(static) if (nn >= 512)
-    for (std::size_t k = 0; k < nn; ++k) {
-      const std::size_t p = static_cast<std::size_t>(near_[k]);
-      St& s = near_st_[k];
-      s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
-      s.for_each_weight([&](int64_t n, double w) {
-        if (w != 0.0) mark_node(n, p);
-      });
-    }
   }
   void tag_body_fields(const std::size_t nn) {
 #pragma omp parallel for schedule(static) if (nn >= 512)
