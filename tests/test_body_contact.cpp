@@ -284,5 +284,20 @@ TEST(BodyContact, JAtACrackTipCountsOnlyTheCrackedBody) {
   EXPECT_LT(beside, 1e-6) << "alone " << alone;
 }
 
+// Bodies that overlap with contact between them each keep their own field there: nothing pushes them
+// apart (contact acts only while they approach), and the warning says so rather than promising it.
+TEST(BodyContact, OverlappingBodiesInContactAreWarnedThatTheOverlapStays) {
+  json s = colliding_disks(json::array({{{"bodies", {"left", "right"}}, {"law", "frictionless"}}}), "ugimp");
+  s["bodies"][0]["velocity"] = {0, 0};
+  s["bodies"][1]["velocity"] = {0, 0};
+  s["bodies"][1]["shape"]["center"] = {28, 0};  // 2 mm into the left disk
+  Model<2> m = build_model<2>(s);
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_NE(m.warnings[0].find("the overlap stays"), std::string::npos) << m.warnings[0];
+  auto st = make_stepper<2>(m);
+  EXPECT_FALSE(test::advance(*st, 50));
+  EXPECT_EQ(st->global_state().kinetic, 0.0);
+}
+
 }  // namespace
 }  // namespace cleave

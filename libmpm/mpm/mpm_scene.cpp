@@ -287,8 +287,9 @@ Model<Dim> build_model(const json& scene) {
     for (const auto& b : m.bodies) points.emplace_back(&m.particles.x[b.first], b.count);
     for (auto& w : scene::overlap_warnings<Dim>(specs, points, "particle",
                                                 "MPM gives the overlap the mass of both, and their particles share "
-                                                "grid nodes, so the two stick together (or, where \"contact\" names both, "
-                                                "contact pushes them apart from the first step)"))
+                                                "grid nodes, so the two stick together (or, where \"contact\" names both, each "
+                                                "moves on its own field and the overlap stays: contact acts only "
+                                                "while bodies approach)"))
       m.warnings.push_back(std::move(w));
   }
 
