@@ -5,7 +5,9 @@
 // (stick, frictionless or Coulomb friction) as a momentum exchange between the two fields.
 // The nodal volume is compared with a cell's area (2D) or volume (3D). 3D particles carry no
 // rotation, so 3D displacement detection compares the fields' displacements without the rotation
-// correction of 2D.
+// correction of 2D. The same loop couples the fields of two bodies in declared contact
+// (body_groups.hpp): their pair's law, a normal from the fields' mass gradients, detection by
+// position or volume; bodies press but never pull in the exchange of momentum (Task 4).
 #pragma once
 #include <algorithm>
 #include <atomic>
@@ -68,7 +70,7 @@ class CrackContact : public CrackMotion<Dim, SF> {
           if (!(ma > 0.0 && mb > 0.0)) continue;
           // The normal from a to b: the crack's (from above to below), or between bodies the
           // difference of the two fields' sums m_p grad S (each points out of its own body), or the
-          // sum of the body the scene names as the pair's flat face (body_normal).
+          // sum of the body the scene names as the pair's flat face (its "normal" key).
           V nrm;
           if (!two_bodies) nrm = normal_sum(xi, crack) + normal_sum(xj, crack);
           else {
