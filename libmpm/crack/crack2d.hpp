@@ -51,7 +51,7 @@ inline Side crack_crossing(const Crack2D& c, const Vec<2>& particle, const Vec<2
 // contact meet (libmpm/mpm/crack_fields/body_groups.hpp); the crack codes are read with key_code.
 inline constexpr uint32_t kFieldKeyOverflow = 0xffffffffu;
 inline constexpr int kKeyCodeBits = 12;
-inline constexpr uint32_t kKeyCodeMask = (1u << kKeyCodeBits) - 1, kKeyCracksMask = 0xffffffu;
+inline constexpr uint32_t kKeyCodeMask = (1u << kKeyCodeBits) - 1;
 inline constexpr int kMaxCracks = static_cast<int>(kKeyCodeMask / 2) - 1;  // codes up to 2 (kMaxCracks - 1) + 2
 // Code c (0 or 1) of a key (0: none).
 inline constexpr uint32_t key_code(uint32_t key, int c) { return (key >> (kKeyCodeBits * c)) & kKeyCodeMask; }

@@ -81,7 +81,6 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
       if (c.contact_law == Law::None) continue;
       (c.detection == crack::Detection::Volume ? need_volume_ : need_disp_) = true;
     }
-    if (bodies_) need_volume_ = true;  // (bodies detect contact by nodal volume)
   }
 
   bool active() const { return !cracks_.empty() || bodies_; }
@@ -207,8 +206,9 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
     });
   }
 
-  // The same with contact between bodies (which detect it by position or volume): then also each
-  // field's sum m_p grad S, from which contact takes the normal between two bodies, and its volume.
+  // The same with contact between bodies: always the nodal volumes (volume detection, and a body's
+  // share of a node by volume), and each field's sum m_p grad S, from which contact takes the normal
+  // between two bodies, and its volume.
   void extrapolate_with_gradients(std::size_t k, const St& s) {
     if (need_disp_) extrapolate<true, true>(k, s);
     else extrapolate<true, false>(k, s);

@@ -88,11 +88,11 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
   // near the contour but move on fields of their own (the step's keys carry body tags; these do not).
   const std::vector<uint8_t> groups = particle_groups(m);
   std::vector<crack::TipRecord> out;
-  for (const auto& c : m.cracks)
+  for (const auto& c : m.cracks) {
+    const uint8_t own = groups.empty() ? 0 : crack_group(m, groups, static_cast<std::size_t>(c.id));
+    const auto other = [&](std::size_t p) { return !groups.empty() && groups[p] != own; };
     for (int end = 0; end < 2; ++end) {
       if (!c.tip[end]) continue;
-      const uint8_t own = groups.empty() ? 0 : crack_group(m, groups, static_cast<std::size_t>(c.id));
-      const auto other = [&](std::size_t p) { return !groups.empty() && groups[p] != own; };
       const crack::TipFrame f = crack::tip_frame(c, end);
       crack::TipRecord rec;
       rec.crack = c.id;
@@ -261,6 +261,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       rec.KII = k.KII;
       out.push_back(rec);
     }
+  }
   return out;
 }
 

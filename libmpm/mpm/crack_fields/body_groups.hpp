@@ -40,7 +40,7 @@ class BodyGroups : public SpatialIndex<Dim, SF> {
   // The crack index's near test, and near another body's group.
   struct NearTest {
     typename Base::NearTest crack;
-    const uint32_t* cell_group;  // grown group marks per cell; null without contact between bodies
+    const uint32_t* cell_group;  // per cell: 3 when hot (mark_nodes_and_hot_cells); null without contact between bodies
     Vec<Dim> origin;
     double inv_h;
     int cells[Dim];
@@ -67,7 +67,6 @@ class BodyGroups : public SpatialIndex<Dim, SF> {
     Base::prepare_index();
     if (bodies_) mark_cells();
   }
-  bool bodies_active() const { return bodies_; }
 
  protected:
   using Base::cell_count, Base::cell_of, Base::cells_, Base::G_, Base::inv_h_, Base::stride_;
