@@ -24,18 +24,19 @@ enum Part : int {
   Contact,        // MPM: crack contact
   TipParameters,  // MPM: J and K at crack tips and fronts
   TipTracking,    // peridynamics: finding the tracked tips in the damage field
+  CrackGrowth,    // MPM: growth checks (J and K at the growing tips) and the new crack segments
   Output,         // frames, CSV rows, checkpoints, run.json, the progress line
   kParts
 };
 
 // As printed in the `cost:` line.
 inline const char* name(int part) {
-  static const char* names[kParts] = {"step", "crack fields", "contact", "J/K", "tip tracking", "output"};
+  static const char* names[kParts] = {"step", "crack fields", "contact", "J/K", "tip tracking", "crack growth", "output"};
   return names[part];
 }
 // As keyed in run.json's "costs"."parts".
 inline const char* key(int part) {
-  static const char* keys[kParts] = {"step", "crack_fields", "contact", "J_K", "tip_tracking", "output"};
+  static const char* keys[kParts] = {"step", "crack_fields", "contact", "J_K", "tip_tracking", "crack_growth", "output"};
   return keys[part];
 }
 

@@ -188,7 +188,7 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
   std::map<std::string, std::size_t> names;
   for (std::size_t i = 0; i < cracks.size(); ++i) {
     const ObjectReader r(cracks[i], index_path(key_path, i),
-                         {"name", "points", "from", "to", "segment_length", "contact", "tips"});
+                         {"name", "points", "from", "to", "segment_length", "contact", "tips", "propagation"});
     Crack2D c;
     c.id = static_cast<int>(i);
     c.name = r.string("name");

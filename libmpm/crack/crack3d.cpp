@@ -19,7 +19,7 @@ std::vector<ExplicitCrack<3>> parse_cracks3d(const nlohmann::json& cracks, const
     c.id = static_cast<int>(i);
     const ObjectReader r(cracks[i], index_path(key_path, i),
                          {"name", "triangles", "quad", "mesh", "rectangle", "ellipse", "file", "element_size",
-                          "contact", "tips"});
+                          "contact", "tips", "propagation"});
     if (r.has("contact")) read_crack_contact(r, c);
     c.tips = r.string_or("tips", "auto");
     if (c.tips != "auto" && c.tips != "all" && c.tips != "none")

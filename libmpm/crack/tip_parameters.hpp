@@ -72,6 +72,7 @@ struct TipRecord {
   Vec<2> x = Vec<2>::Zero();
   double J1 = 0, J2 = 0, KI = 0, KII = 0;
   double cod_I = 0, cod_II = 0;  // the openings that split K (max(radius, 3 cells) behind the tip)
+  int material = -1;             // of the particle nearest the tip (MPM), for its toughness
 };
 
 }  // namespace cleave::crack

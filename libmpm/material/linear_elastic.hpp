@@ -15,13 +15,14 @@ template <int Dim>
 class LinearElastic final : public Material<Dim> {
  public:
   explicit LinearElastic(const MaterialArgs& a) : analysis_(a.analysis) {
-    const ObjectReader r(a.json, a.key_path, {"name", "type", "E", "nu", "density"});
+    const ObjectReader r(a.json, a.key_path, {"name", "type", "E", "nu", "density", "G_c", "K_Ic", "fracture_energy"});
     E_ = r.positive("E", a.units.factor(Quantity::Stress));
     nu_ = r.number("nu");
     if (!(nu_ > -1.0 && nu_ < 0.5))
       throw SceneError(r.at("nu"), "Poisson's ratio must satisfy -1 < nu < 0.5 (got " + std::to_string(nu_) + ")");
     this->density_ = r.positive("density", a.units.factor(Quantity::Density));
     this->name_ = a.json.value("name", std::string());
+    this->read_toughness(r, a.units);
     G_ = E_ / (2.0 * (1.0 + nu_));
     lambda_ = E_ * nu_ / ((1.0 + nu_) * (1.0 - 2.0 * nu_));
     plane_stress_ = analysis_ == Analysis::PlaneStress;

@@ -2,10 +2,12 @@
 // the scene names it with "type". Stresses are Cauchy, strains small-strain tensor components,
 // both in the Sym<Dim> layout of core/types.hpp.
 #pragma once
+#include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "libmpm/core/error.hpp"
 #include "libmpm/core/registry.hpp"
 #include "libmpm/core/types.hpp"
 #include "libmpm/core/units.hpp"
@@ -30,10 +32,30 @@ class Material {
   virtual double wave_speed() const = 0;
   double density() const { return density_; }
   const std::string& name() const { return name_; }
+  // Fracture toughness, for growing cracks (crack::Propagation): the scene gives G_c (J/m^2) or
+  // K_Ic (Pa sqrt(m)), the other being 0 here; both 0 when it gives neither.
+  double toughness_Gc() const { return Gc_; }
+  double toughness_KIc() const { return KIc_; }
 
  protected:
   double density_ = 0.0;
   std::string name_;
+  double Gc_ = 0.0, KIc_ = 0.0;
+  // Reads the optional toughness keys "G_c" (or "fracture_energy", peridynamics' spelling, so that
+  // one material serves both methods) and "K_Ic", at most one of them, each > 0.
+  template <class Reader>
+  void read_toughness(const Reader& r, const UnitSystem& units) {
+    const char* given[] = {"G_c", "fracture_energy", "K_Ic"};
+    const char* first = nullptr;
+    for (const char* k : given)
+      if (r.has(k)) {
+        if (first) throw SceneError(r.at(k), std::string("give one toughness, not both \"") + first + "\" and \"" + k + "\"");
+        first = k;
+      }
+    const double stress = units.factor(Quantity::Stress), length = units.factor(Quantity::Length);
+    if (r.has("K_Ic")) KIc_ = r.positive("K_Ic", stress * std::sqrt(length));
+    else if (first) Gc_ = r.positive(first, stress * length);
+  }
 };
 
 // Arguments to a material factory: its JSON object, its key path for errors, units and analysis.

@@ -73,6 +73,12 @@ class Method {
   // Rows per record of the table (for the size estimate).
   virtual std::size_t tip_rows_per_record() const { return 2; }
   virtual std::vector<std::vector<double>> tip_rows() { return {}; }
+  // A table of events (MPM: crack_growth.csv, a row per growth of a crack tip): its file, its columns
+  // (empty: the run has none) and the rows since the last call, which the run loop writes after
+  // every step (each row's first column is its time, so a resumed run cuts the table there).
+  virtual std::string event_file() const { return "events.csv"; }
+  virtual std::vector<std::string> event_columns() const { return {}; }
+  virtual std::vector<std::vector<double>> take_event_rows() { return {}; }
   // Dynamic relaxation (RunSettings::static_tolerance > 0, method/relaxation.hpp): whether the state
   // is static now (the run loop ends the run there), and where the relaxation stands (for the message
   // when time.end comes first).

@@ -99,6 +99,7 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
   const RunSettings& set = method.settings();
   const fs::path out = opt.out;
   const fs::path ck_path = out / "checkpoint.bin", csv_path = out / "global.csv", tips_path = out / method.tip_file();
+  const fs::path events_path = out / method.event_file();
   if (opt.resume && !fs::exists(ck_path)) throw RunRefused(ck_path.string() + ": no checkpoint to resume from");
   fs::create_directories(out);
   // Before anything in the directory is touched: a second run into it is refused here.
@@ -113,7 +114,7 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
   for (const auto& s : series)
     if (std::find(any_series.begin(), any_series.end(), s) == any_series.end()) any_series.push_back(s);
   const std::vector<std::string> run_files = {"global.csv", "checkpoint.bin", "run.json", "crack_tips.csv",
-                                                "crack_fronts.csv"};
+                                                "crack_fronts.csv", "crack_growth.csv"};
   {
     const costs::Scope cost(costs::Output);
     io::remove_temporaries(out, any_series, run_files);  // what a killed run's atomic writes left
@@ -122,6 +123,8 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
   for (const auto& s : series) pvd.emplace_back(out / (s + ".pvd"));
   const std::vector<std::string> tip_cols = method.tip_columns();
   const bool tips = !tip_cols.empty();
+  const std::vector<std::string> event_cols = method.event_columns();
+  const bool events = !event_cols.empty();
 
   LoopCounters ck;
   long ck_step = -1;  // the checkpoint --resume would continue from (-1: none yet)
@@ -198,6 +201,7 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
       if (opt.resume) {
         io::CsvSeries::truncate_after(csv_path, method.time());
         io::CsvSeries::truncate_after(tips_path, method.time());
+        if (events) io::CsvSeries::truncate_after(events_path, method.time());
       } else {
         // A fresh run replaces the outputs of an earlier one in the same directory (of any method).
         io::remove_run_outputs(out, any_series, run_files);
@@ -207,10 +211,11 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
     // rows up to the checkpoint (written with round-trip precision), so run.json's energy_gain is that
     // of an uninterrupted run.
     if (opt.resume) replay_balance(csv_path, sum);
-    std::optional<io::CsvSeries> csv, tip_csv;
+    std::optional<io::CsvSeries> csv, tip_csv, event_csv;
     output([&] {
       csv.emplace(csv_path, method.global_columns(), opt.resume);
       if (tips) tip_csv.emplace(tips_path, tip_cols, opt.resume);
+      if (events) event_csv.emplace(events_path, event_cols, opt.resume);
     });
     status_running();
 
@@ -298,6 +303,11 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
         problem = method.step();
       }
       if (opt.between_steps) opt.between_steps();
+      if (events)
+        if (const auto rows = method.take_event_rows(); !rows.empty())
+          output([&] {
+            for (const auto& row : rows) event_csv->row(row);
+          });
       const double t = method.time();
       const bool last = t >= set.end_time - eps || method.static_reached();
       if (opt.log)

@@ -57,6 +57,20 @@ class StateReader {
     i_.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
     if (!i_) throw std::runtime_error(file_ + ": checkpoint is truncated");
   }
+  // Reads an array whose size the run changes (a growing crack's points): at least `least` and at
+  // most `most` elements, else the checkpoint is of another scene or damaged.
+  template <class T>
+  void array_sized(std::vector<T>& v, const char* what, std::size_t least, std::size_t most) {
+    uint64_t n = 0;
+    value(n);
+    if (n < least || n > most)
+      throw std::runtime_error(file_ + ": the checkpoint holds " + std::to_string(n) + " " + what + "; the scene allows " +
+                               std::to_string(least) + " to " + std::to_string(most) +
+                               " (a checkpoint of another scene: run without --resume)");
+    v.resize(n);
+    i_.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+    if (!i_) throw std::runtime_error(file_ + ": checkpoint is truncated");
+  }
   const std::string& file() const { return file_; }
 
  private:

@@ -225,6 +225,39 @@ void build_cracks3d(Model<3>& m) {
   }
 }
 
+// cracks[i].propagation: how each crack grows (crack/propagation.hpp). The crack needs a tip, and
+// the material at each of its tips an isotropic elastic law and a toughness.
+void read_propagation(const json& scene, double length, Model<2>& m) {
+  const json& cracks = scene["cracks"];
+  for (const auto& c : m.cracks) {
+    const json& cj = cracks[static_cast<std::size_t>(c.id)];
+    if (!cj.contains("propagation")) continue;
+    const std::string path = "cracks[" + std::to_string(c.id) + "].propagation";
+    if (m.propagation.empty()) m.propagation.resize(m.cracks.size());
+    m.propagation[c.id] = crack::parse_propagation(cj["propagation"], path, length);
+    if (!c.tip[0] && !c.tip[1])
+      throw SceneError(path, "crack '" + c.name + "' has no tip to grow from (both ends lie outside the material, or "
+                             "\"tips\" says none)");
+    for (int end = 0; end < 2; ++end) {
+      if (!c.tip[end]) continue;
+      const Vec<2> x = crack::tip_frame(c, end).tip;
+      std::size_t near = 0;
+      double best = INFINITY;
+      for (std::size_t p = 0; p < m.particles.size(); ++p)
+        if (const double d = (m.particles.x[p] - x).squaredNorm(); d < best) best = d, near = p;
+      const int k = m.particles.material[near];
+      const Material<2>& mat = *m.materials[k];
+      const std::string mpath = "materials[" + std::to_string(k) + "]";
+      double mu = 0.0, nu = 0.0;
+      if (!mat.isotropic_elastic(mu, nu))
+        throw SceneError(mpath, "crack '" + c.name + "' grows into it: growth needs an isotropic elastic material");
+      if (!(mat.toughness_Gc() > 0.0 || mat.toughness_KIc() > 0.0))
+        throw SceneError(mpath, "missing toughness: crack '" + c.name + "' grows (" + path +
+                                    ") into material '" + mat.name() + "', which gives neither \"G_c\" nor \"K_Ic\"");
+    }
+  }
+}
+
 }  // namespace
 
 template <int Dim>
@@ -234,6 +267,10 @@ void read_cracks(const json& scene, double length, Model<Dim>& m) {
                                    std::to_string(crack::kMaxCracks) + " (a velocity field's key numbers them in 12 bits)");
   if constexpr (Dim == 3) {
     // Crack particles at half a cell, as the seed's (its §4: "crack particles ... about half the cell size").
+    for (std::size_t i = 0; i < scene["cracks"].size(); ++i)
+      if (scene["cracks"][i].is_object() && scene["cracks"][i].contains("propagation"))
+        throw SceneError("cracks[" + std::to_string(i) + "].propagation",
+                         "3D cracks do not grow yet (growth is 2D so far); remove the key");
     m.cracks = crack::parse_cracks3d(scene["cracks"], "cracks", length, {0.5 * m.grid.h, true});
     build_cracks3d(m);
   } else {
@@ -241,6 +278,7 @@ void read_cracks(const json& scene, double length, Model<Dim>& m) {
     check_cracks(m);
     cut_through_near_edges(m);
     resolve_tips(m);
+    read_propagation(scene, length, m);
   }
 }
 

@@ -12,8 +12,8 @@
 // for crack-tip parameters, so scenes without "crack_tips" pay nothing.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <map>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -29,6 +29,32 @@ namespace cleave {
 inline constexpr double kCodCells = 3.0;
 
 namespace detail {
+// The cracks as far as they come within `radius` (max-norm) of x: for each crack with a segment whose
+// box meets that square, a copy of its contiguous range of such segments (id and points only). For
+// every line inside the square the crossing test gives the same answer as on the whole crack: the
+// range holds every segment that can reach the line, and its end vertices lie outside the square
+// (or are the crack's own ends), so no line touches them. A tip's evaluation then costs what its
+// neighbourhood holds, not the length a growing crack has reached.
+inline std::vector<crack::Crack2D> cracks_near(const std::vector<crack::Crack2D>& cracks, const Vec<2>& x, double radius) {
+  std::vector<crack::Crack2D> out;
+  const Vec<2> lo = x.array() - radius, hi = x.array() + radius;
+  for (const auto& c : cracks) {
+    std::size_t first = c.points.size(), last = 0;
+    for (std::size_t s = 0; s + 1 < c.points.size(); ++s) {
+      const Vec<2> a = c.points[s].cwiseMin(c.points[s + 1]), b = c.points[s].cwiseMax(c.points[s + 1]);
+      if ((a.array() > hi.array()).any() || (b.array() < lo.array()).any()) continue;
+      first = std::min(first, s), last = s;
+    }
+    if (first > last) continue;
+    crack::Crack2D l;
+    l.id = c.id;
+    l.points.assign(c.points.begin() + static_cast<std::ptrdiff_t>(first), c.points.begin() + static_cast<std::ptrdiff_t>(last + 2));
+    l.update_extent();
+    out.push_back(std::move(l));
+  }
+  return out;
+}
+
 // Mass-weighted nodal sums of one velocity field at one node (eq. 36).
 struct TipFieldSums {
   double m = 0.0;
@@ -40,6 +66,61 @@ struct TipFieldSums {
   Vec<3> stress = Vec<3>::Zero();  // m (sxx, syy, sxy)
   Mat<2> grad_u = Mat<2>::Zero();  // m du_i/dx_j
   Vec<2> u = Vec<2>::Zero(), v = Vec<2>::Zero();
+};
+
+// The sums of eq. 36 per (node, field key) over a box of nodes about a tip: a list per node, its
+// keys ascending (as a std::map ordered them, which this replaced: the map's lookups were half the
+// cost of a growth check).
+class TipNodeSums {
+ public:
+  TipNodeSums(const std::array<int, 2>& nodes, const Vec<2>& lo_x, const Vec<2>& hi_x, const Vec<2>& origin, double h) {
+    for (int d = 0; d < 2; ++d) {
+      lo_[d] = std::clamp(static_cast<int64_t>(std::floor((lo_x[d] - origin[d]) / h)), int64_t{0}, int64_t{nodes[d] - 1});
+      n_[d] = std::clamp(static_cast<int64_t>(std::ceil((hi_x[d] - origin[d]) / h)), int64_t{0}, int64_t{nodes[d] - 1}) -
+              lo_[d] + 1;
+    }
+    stride_ = nodes[1];
+    head_.assign(static_cast<std::size_t>(n_[0] * n_[1]), -1);
+  }
+  // The sums of (node, key), created empty when new; nullptr for a node outside the box.
+  TipFieldSums* get(int64_t node, uint32_t key) {
+    const int64_t l = local(node);
+    if (l < 0) return nullptr;
+    int32_t* link = &head_[l];
+    while (*link >= 0 && slots_[*link].key < key) link = &slots_[*link].next;
+    if (*link >= 0 && slots_[*link].key == key) return &slots_[*link].sums;
+    slots_.push_back({key, *link, {}});
+    *link = static_cast<int32_t>(slots_.size() - 1);
+    return &slots_.back().sums;
+  }
+  const TipFieldSums* find(int64_t node, uint32_t key) const {
+    const int64_t l = local(node);
+    if (l < 0) return nullptr;
+    for (int32_t e = head_[l]; e >= 0 && slots_[e].key <= key; e = slots_[e].next)
+      if (slots_[e].key == key) return &slots_[e].sums;
+    return nullptr;
+  }
+  // f(sums) for every key of the node, ascending.
+  template <class F>
+  void each(int64_t node, F&& f) const {
+    const int64_t l = local(node);
+    if (l >= 0)
+      for (int32_t e = head_[l]; e >= 0; e = slots_[e].next) f(slots_[e].sums);
+  }
+
+ private:
+  struct Slot {
+    uint32_t key;
+    int32_t next;
+    TipFieldSums sums;
+  };
+  int64_t local(int64_t node) const {
+    const int64_t i = node / stride_ - lo_[0], j = node % stride_ - lo_[1];
+    return i < 0 || j < 0 || i >= n_[0] || j >= n_[1] ? -1 : i * n_[1] + j;
+  }
+  int64_t lo_[2], n_[2], stride_;
+  std::vector<int32_t> head_;
+  std::vector<Slot> slots_;
 };
 }  // namespace detail
 
@@ -109,12 +190,17 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       // rotation adds theta times the net force on the contour's material to J, which vanishes at rest
       // and is the centripetal term in a spinning body. The accelerations of eq. 33 stay absolute:
       // with the relative gradients they carry the centrifugal body force, the physical part.
+      // The particles within the square of side 2 reach about the tip (reach exceeds the rigid fit's
+      // radius): the passes below test only these, in particle order.
+      std::vector<std::size_t> around;
+      for (std::size_t p = 0; p < P.size(); ++p)
+        if (std::abs(P.x[p].x() - f.tip.x()) <= reach && std::abs(P.x[p].y() - f.tip.y()) <= reach) around.push_back(p);
       double omega = 0.0;
       {
         const double fit = contour_extent + 1.5 * h;
         double msum = 0.0, mth = 0.0;
         V mx = V::Zero(), mv = V::Zero();
-        for (std::size_t p = 0; p < P.size(); ++p) {
+        for (std::size_t p : around) {
           if ((P.x[p] - f.tip).norm() > fit || other(p)) continue;
           const double mp = P.mass[p];
           msum += mp, mth += mp * P.rotation[p], mx += mp * P.x[p], mv += mp * P.v[p];
@@ -124,7 +210,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
           theta = mth / msum;
           mx /= msum, mv /= msum;
           double num = 0.0, den = 0.0;
-          for (std::size_t p = 0; p < P.size(); ++p) {
+          for (std::size_t p : around) {
             if ((P.x[p] - f.tip).norm() > fit || other(p)) continue;
             const V r = P.x[p] - mx, dv = P.v[p] - mv;
             num += P.mass[p] * (r.x() * dv.y() - r.y() * dv.x());
@@ -139,12 +225,15 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         return V(P.v[p].x() + omega * r.y(), P.v[p].y() - omega * r.x());
       };
 
+      // Lines from the particles within reach to their nodes stay within reach + 2 cells of the tip.
+      const std::vector<crack::Crack2D> local = detail::cracks_near(m.cracks, f.tip, reach + 3.0 * h);
       // Eq. 36: nodal sums per (node, field key).
-      std::map<std::pair<int64_t, uint32_t>, detail::TipFieldSums> sums;
+      // (Nodes of the particles within reach: up to 2 cells beyond them with uGIMP.)
+      detail::TipNodeSums sums(G.nodes, f.tip.array() - (reach + 3.0 * h), f.tip.array() + (reach + 3.0 * h), G.origin, h);
       std::vector<std::size_t> inside;
       std::size_t nearest = P.size();
       double nearest_d = INFINITY;
-      for (std::size_t p = 0; p < P.size(); ++p) {
+      for (std::size_t p : around) {
         const double d = (P.x[p] - f.tip).norm();
         if (d > reach || other(p)) continue;
         if (d < nearest_d) nearest_d = d, nearest = p;
@@ -160,9 +249,11 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
         st.for_each_weight([&](int64_t n, double w) {
           if (w == 0.0) return;
-          const uint32_t key = crack::field_key(m.cracks, P.x[p], node_pos(n));
+          const uint32_t key = crack::field_key(local, P.x[p], node_pos(n));
           if (key == crack::kFieldKeyOverflow) return;
-          auto& a = sums[{n, key}];
+          detail::TipFieldSums* ap = sums.get(n, key);
+          if (!ap) return;  // (never: the box holds every node of these particles)
+          auto& a = *ap;
           const double mw = mp * w;
           a.m += mw;
           a.energy += mw * energy;
@@ -189,8 +280,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         for_cell_nodes(f.tip, [&](int64_t n, double w) {
           double mn = 0.0;
           V pn = V::Zero();
-          for (auto it = sums.lower_bound({n, 0u}); it != sums.end() && it->first.first == n; ++it)
-            mn += it->second.m, pn += it->second.v;
+          sums.each(n, [&](const detail::TipFieldSums& q) { mn += q.m, pn += q.v; });
           if (!(mn > 0.0) || w == 0.0) return;
           v_tip += w * pn / mn;
           wsum += w;
@@ -204,9 +294,9 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         q = detail::TipFieldSums{};
         double wsum = 0.0;
         const bool in_grid = for_cell_nodes(x, [&](int64_t n, double w) {
-          const auto it = sums.find({n, crack::field_key(m.cracks, x, node_pos(n))});
-          if (w == 0.0 || it == sums.end() || !(it->second.m > 0.0)) return;
-          const auto& s = it->second;
+          const detail::TipFieldSums* it = sums.find(n, crack::field_key(local, x, node_pos(n)));
+          if (w == 0.0 || !it || !(it->m > 0.0)) return;
+          const auto& s = *it;
           const double k = w / s.m;
           const double kinetic = 0.5 * (s.rho_vv - 2.0 * v_tip.dot(s.rho_v) + s.rho * v_tip.squaredNorm());
           q.energy += k * (s.energy + kinetic), q.stress += k * s.stress, q.grad_u += k * s.grad_u, q.u += k * s.u;
@@ -233,8 +323,8 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
         Mat<2> gv = Mat<2>::Zero();
         st.for_each([&](int64_t n, double, const V& g) {
-          const auto it = sums.find({n, crack::field_key(m.cracks, P.x[p], node_pos(n))});
-          if (it != sums.end() && it->second.m > 0.0) gv += (it->second.v / it->second.m) * g.transpose();
+          const detail::TipFieldSums* it = sums.find(n, crack::field_key(local, P.x[p], node_pos(n)));
+          if (it && it->m > 0.0) gv += (it->v / it->m) * g.transpose();
         });
         J += P.mass[p] / thickness[p] * (grad_u(p).transpose() * accel(p) - gv.transpose() * (v_rel(p) - v_tip));
       }
@@ -259,6 +349,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       const auto k = crack::stress_intensity(rec.J1, rec.cod_I, rec.cod_II, mu, crack::kolosov_kappa(m.analysis, nu));
       rec.KI = k.KI;
       rec.KII = k.KII;
+      rec.material = P.material[nearest];
       out.push_back(rec);
     }
   }

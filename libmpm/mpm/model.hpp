@@ -13,6 +13,7 @@
 #include "libmpm/core/run_settings.hpp"
 #include "libmpm/crack/crack2d.hpp"
 #include "libmpm/crack/front_parameters.hpp"
+#include "libmpm/crack/propagation.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/material/material.hpp"
 #include "libmpm/mpm/body_contact.hpp"
@@ -54,6 +55,8 @@ struct Model : RunSettings {
   BodyContact body_contact;  // fields of their own for bodies in contact (none unless the scene declares it)
   std::vector<crack::ExplicitCrack<Dim>> cracks;  // explicit cracks (none in uncracked scenes)
   std::optional<crack::TipSettings> crack_tips;  // J and K at the crack tips, when the scene asks
+  // 2D: per crack, how it grows (cracks[i].propagation); empty when no crack grows.
+  std::vector<std::optional<crack::Propagation>> propagation;
   // 3D: the closed-form references crack_tips.reference names (crack_fronts.csv's *_ref columns).
   std::vector<crack::EllipseReference> front_references;
   std::vector<TractionLoad<Dim>> tractions;

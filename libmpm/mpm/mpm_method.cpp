@@ -8,6 +8,7 @@
 
 #include "libmpm/core/part_costs.hpp"
 #include "libmpm/io/crack_output.hpp"
+#include "libmpm/mpm/crack_growth.hpp"
 #include "libmpm/mpm/particle_output.hpp"
 #include "libmpm/method/describe.hpp"
 #include "libmpm/method/relaxation.hpp"
@@ -45,10 +46,12 @@ class MpmMethod final : public Method<Dim> {
   explicit MpmMethod(const nlohmann::json& scene)
       : owned_(std::make_unique<Model<Dim>>(build_model<Dim>(scene))), m_(*owned_), stepper_(make_stepper<Dim>(m_)) {
     if (m_.static_tolerance > 0) relax_.emplace(m_.static_tolerance);
+    make_growth();
   }
   // A method over a model the caller built and keeps (tests and benchmarks inspect it afterwards).
   explicit MpmMethod(Model<Dim>& m) : m_(m), stepper_(make_stepper<Dim>(m_)) {
     if (m_.static_tolerance > 0) relax_.emplace(m_.static_tolerance);
+    make_growth();
   }
 
   const char* name() const override { return "mpm"; }
@@ -75,6 +78,14 @@ class MpmMethod final : public Method<Dim> {
                            c.contact_law == crack::ContactLaw::Friction
                                ? (" mu=" + std::to_string(c.friction)).c_str() : "",
                            c.detection == crack::Detection::Volume ? "volume" : "displacement"));
+    if constexpr (Dim == 2)
+      for (const auto& c : m.cracks)
+        if (const auto& p = m.propagation.empty() ? std::nullopt : m.propagation[c.id])
+          out.push_back(format("crack '%s' grows: %s criterion, %s direction, %.3g-cell steps, checked every %d step%s%s",
+                               c.name.c_str(), p->criterion.c_str(), p->direction.c_str(), p->growth_length,
+                               p->check_interval, p->check_interval == 1 ? "" : "s",
+                               p->max_speed_cR > 0 ? format(", speed at most %.3g c_R", p->max_speed_cR).c_str() : "") +
+                        "; crack_growth.csv");
     describe_body_contact(m, out);
     out.push_back(format("output: every %.6g s (%zu fields), global.csv every %.6g s", m.output.interval,
                          m.output.fields.size(), m.output.global_interval));
@@ -117,6 +128,8 @@ class MpmMethod final : public Method<Dim> {
 
   StepProblem step() override {
     StepProblem p = stepper_->step();
+    if constexpr (Dim == 2)
+      if (growth_ && growth_->due(stepper_->step_count())) grow_cracks();
     if (relax_ && relax_->due(stepper_->step_count())) {
       const auto g = stepper_->global_state();
       m_.damping = relax_->check(g.time, g.strain, g.kinetic, m_.particles);
@@ -127,7 +140,12 @@ class MpmMethod final : public Method<Dim> {
   }
   double time() const override { return stepper_->time(); }
   long step_count() const override { return stepper_->step_count(); }
-  std::string take_warning() override { return stepper_->take_warning(); }
+  std::string take_warning() override {
+    std::string w = stepper_->take_warning();
+    for (const auto& g : growth_warnings_) w += (w.empty() ? "" : "\n") + g;
+    growth_warnings_.clear();
+    return w;
+  }
   std::string fastest_point() const override {
     const auto& P = m_.particles;
     const std::size_t fast = fastest<Dim>(P.v);
@@ -175,6 +193,17 @@ class MpmMethod final : public Method<Dim> {
       if (m_.crack_tips) return io::crack_point_set(m_.cracks, tips_now());
     }
     return io::crack_point_set(m_.cracks);
+  }
+
+  std::string event_file() const override { return "crack_growth.csv"; }
+  std::vector<std::string> event_columns() const override {
+    return growth_ ? CrackGrowth::columns() : std::vector<std::string>{};
+  }
+  std::vector<std::vector<double>> take_event_rows() override {
+    std::vector<std::vector<double>> rows;
+    if (growth_)
+      for (const auto& e : growth_->take_events()) rows.push_back(CrackGrowth::row(e));
+    return rows;
   }
 
   std::string tip_file() const override { return Dim == 3 ? "crack_fronts.csv" : "crack_tips.csv"; }
@@ -243,6 +272,7 @@ class MpmMethod final : public Method<Dim> {
     for (const auto& c : m_.cracks) w.array(c.points), w.array(c.above), w.array(c.below);
     table_.save(w);
     if (relax_) relax_->save(w);
+    if (growth_) growth_->save(w);
   }
   void load(StateReader& r) override {
     double t = 0, work = 0;
@@ -254,16 +284,45 @@ class MpmMethod final : public Method<Dim> {
     r.array(P.stress, "particles"), r.array(P.strain, "particles"), r.array(P.rotation, "particle rotations");
     if (!P.rotation3.empty()) r.array(P.rotation3, "particle rotations");
     for (auto& c : m_.cracks) {
-      r.array(c.points, "crack points"), r.array(c.above, "crack points"), r.array(c.below, "crack points");
+      if (growth_) {  // a growing crack's points: as many as it had grown to
+        r.array_sized(c.points, "crack points", 2, std::size_t(1) << 28);
+        r.array_sized(c.above, "crack points", c.points.size(), c.points.size());
+        r.array_sized(c.below, "crack points", c.points.size(), c.points.size());
+      } else {
+        r.array(c.points, "crack points"), r.array(c.above, "crack points"), r.array(c.below, "crack points");
+      }
       c.update_extent();
     }
     table_.load(r);
     if (relax_) relax_->load(r), m_.damping = relax_->kappa();
+    if (growth_) growth_->load(r);
     stepper_->restore(t, step, work);
   }
 
 
  private:
+  void make_growth() {
+    if constexpr (Dim == 2) {
+      auto g = std::make_unique<CrackGrowth>(m_);
+      if (g->active()) growth_ = std::move(g);
+    }
+  }
+  // The growth check after a step: J and K at the tips (the scene's crack_tips contour, or the
+  // default one), then the growth. When nothing grew, the same evaluation serves this step's output.
+  void grow_cracks() {
+    if constexpr (Dim == 2) {
+      costs::Scope cost(costs::CrackGrowth);
+      const crack::TipSettings ts = m_.crack_tips ? *m_.crack_tips : crack::TipSettings{};
+      std::vector<crack::TipRecord> tips = stepper_->crack_tip_parameters(ts);
+      if (growth_->grow(stepper_->time(), stepper_->step_count(), tips, growth_warnings_)) {
+        tips_step_ = -1;
+      } else if (m_.crack_tips) {
+        tips_ = std::move(tips);
+        tips_step_ = stepper_->step_count();
+      }
+    }
+  }
+
   // J and K at the tips in the current state: a frame (cracks.vtu) and a crack_tips.csv row at the
   // same step share one evaluation of the contours (charged to J/K in the run's costs).
   const std::vector<crack::TipRecord>& tips_now() {
@@ -295,6 +354,8 @@ class MpmMethod final : public Method<Dim> {
   std::vector<crack::FrontRecord> fronts_;
   long fronts_step_ = -1;
   std::optional<Relaxation> relax_;  // scenes with "static"
+  std::unique_ptr<CrackGrowth> growth_;  // 2D scenes whose cracks grow
+  std::vector<std::string> growth_warnings_;
 };
 
 }  // namespace

@@ -1,0 +1,175 @@
+// Growing 2D cracks: the growth check and the new segments (crack_growth.hpp).
+#include "libmpm/mpm/crack_growth.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "libmpm/core/error.hpp"
+#include "libmpm/method/describe.hpp"
+
+namespace cleave {
+
+double material_ahead(const Model<2>& m, const std::vector<double>& half_size, const Vec<2>& x, const Vec<2>& e,
+                      double reach, double tol) {
+  const auto& P = m.particles;
+  double edge = 0.0;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Vec<2> d = P.x[p] - x;
+    const double s = d.dot(e);
+    if (s <= 0.0 || s > reach || std::abs(d.x() * e.y() - d.y() * e.x()) > half_size[p] + tol) continue;
+    edge = std::max(edge, s + half_size[p]);
+  }
+  return edge;
+}
+
+namespace {
+
+// Where the segment a -> a + L d (d a unit vector) first meets segment [p, q]: its parameter in
+// [0, L], or infinity when it does not.
+double ray_hit(const Vec<2>& a, const Vec<2>& d, double L, const Vec<2>& p, const Vec<2>& q) {
+  const Vec<2> e = q - p, w = p - a;
+  const double den = d.x() * e.y() - d.y() * e.x();
+  if (den == 0.0) return INFINITY;  // parallel: a collinear touch is left to the next growth
+  const double t = (w.x() * e.y() - w.y() * e.x()) / den, u = (w.x() * d.y() - w.y() * d.x()) / den;
+  return t >= 0.0 && t <= L && u >= 0.0 && u <= 1.0 ? t : INFINITY;
+}
+
+}  // namespace
+
+CrackGrowth::CrackGrowth(Model<2>& m) : m_(m) {
+  for (const auto& p : m.propagation) active_ = active_ || p.has_value();
+  if (!active_) return;
+  state_.resize(2 * m.cracks.size());
+  half_size_.resize(m.particles.size());
+  for (const auto& b : m.bodies)
+    for (std::size_t p = b.first; p < b.first + b.count; ++p)
+      half_size_[p] = 0.5 * std::sqrt(m.particles.volume0[p] / b.thickness);
+}
+
+bool CrackGrowth::due(long step) const {
+  if (!active_) return false;
+  for (const auto& p : m_.propagation)
+    if (p && step % p->check_interval == 0) return true;
+  return false;
+}
+
+bool CrackGrowth::grow(double time, long step, const std::vector<crack::TipRecord>& tips,
+                       std::vector<std::string>& warnings) {
+  const double h = m_.grid.h;
+  bool changed = false;
+  for (const crack::TipRecord& rec : tips) {
+    const auto& prop = m_.propagation[static_cast<std::size_t>(rec.crack)];
+    auto& c = m_.cracks[static_cast<std::size_t>(rec.crack)];
+    if (!prop || step % prop->check_interval != 0 || !c.tip[rec.end]) continue;
+    TipState& st = state_[2 * rec.crack + rec.end];
+    const Material<2>& mat = *m_.materials[static_cast<std::size_t>(rec.material)];  // the tip's nearest particle's
+    double mu = 0.0, nu = 0.0;
+    mat.isotropic_elastic(mu, nu);  // checked by the scene reader for every growing crack's body
+    crack::TipLoading t;
+    t.J = rec.J1, t.KI = rec.KI, t.KII = rec.KII;
+    t.e_prime = 8.0 * mu / (crack::kolosov_kappa(m_.analysis, nu) + 1.0);
+    const double f = prop->resistance_factor(st.grown);  // K_R / K_Ic
+    const double KIc = mat.toughness_KIc() > 0.0 ? mat.toughness_KIc() : std::sqrt(mat.toughness_Gc() * t.e_prime);
+    t.KIc = f * KIc;
+    t.Gc = t.KIc * t.KIc / t.e_prime;
+    const double ratio = crack::InitiationCriteria::instance().at(prop->criterion)(t);
+    if (!(ratio >= 1.0)) continue;
+    const double da = prop->growth_length * h;
+    if (prop->max_speed_cR > 0.0 && st.last_time >= 0.0) {
+      const double cap = prop->max_speed_cR * crack::rayleigh_speed(mu, mat.density(), nu);
+      if ((time - st.last_time) * cap < da * (1.0 - 1e-12)) continue;  // too soon after the last growth
+    }
+    const double theta = crack::DirectionRules::instance().at(prop->direction)(t);
+    const crack::TipFrame fr = crack::tip_frame(c, rec.end);
+    const Vec<2> dir = std::cos(theta) * fr.e1 + std::sin(theta) * fr.e2;
+    Vec<2> to = fr.tip + da * dir;
+    GrowthStop stop = GrowthStop::None;
+
+    // A crack within a cell past the new point: join it there (a ligament under a cell would tie the
+    // faces through the nodes its particles share). The tip's own segment is skipped.
+    double hit = INFINITY;
+    const std::size_t n = c.points.size();
+    for (const auto& o : m_.cracks)
+      for (std::size_t s = 0; s + 1 < o.points.size(); ++s) {
+        if (&o == &c && (rec.end == 1 ? s + 2 == n : s == 0)) continue;
+        hit = std::min(hit, ray_hit(fr.tip, dir, da + h, o.points[s], o.points[s + 1]));
+      }
+    if (hit <= da + h) {
+      to = fr.tip + (hit + 0.02 * h) * dir;  // just past it, so that the two cut the material through
+      stop = GrowthStop::OtherCrack;
+    } else {
+      // Under a cell of material ahead: carried through the free edge, as the scene reader does. The
+      // rows either side of a crack between particle rows sit half a spacing off its line and move
+      // apart as it opens: a quarter cell of slack keeps them ahead of it.
+      const double edge = material_ahead(m_, half_size_, to, dir, 2.0 * h, 0.25 * h);
+      if (edge < h - 1e-9 * h) to += (edge + 0.5 * h) * dir, stop = GrowthStop::FreeEdge;
+    }
+    const Vec<2> lo = m_.grid.origin, hi = m_.grid.upper();
+    if (!((to.array() > lo.array() + h).all() && (to.array() < hi.array() - h).all())) {
+      warnings.push_back(format("crack '%s': its %s tip stopped growing at t = %.6g s: its next point ", c.name.c_str(),
+                                rec.end ? "end" : "start", time) +
+                         position_text<2>(to) + " lies within a cell of the grid's edge; enlarge the grid");
+      c.tip[rec.end] = 0;
+      events_.push_back({time, rec.crack, rec.end, fr.tip, 0.0, 0.0, theta, rec.J1, rec.KI, rec.KII, ratio,
+                         GrowthStop::GridEdge});
+      changed = true;
+      continue;
+    }
+    const double length = (to - fr.tip).norm();
+    if (rec.end == 1) {
+      c.points.push_back(to), c.above.push_back(to), c.below.push_back(to);
+    } else {
+      c.points.insert(c.points.begin(), to), c.above.insert(c.above.begin(), to), c.below.insert(c.below.begin(), to);
+    }
+    c.simplices.clear();
+    for (std::size_t k = 0; k + 1 < c.points.size(); ++k)
+      c.simplices.push_back({static_cast<int32_t>(k), static_cast<int32_t>(k + 1)});
+    c.update_extent();
+    if (stop != GrowthStop::None) c.tip[rec.end] = 0;
+    const double speed = st.last_time >= 0.0 && time > st.last_time ? length / (time - st.last_time) : 0.0;
+    events_.push_back({time, rec.crack, rec.end, to, length, speed, theta, rec.J1, rec.KI, rec.KII, ratio, stop});
+    st.grown += length;
+    st.last_time = time;
+    changed = true;
+  }
+  return changed;
+}
+
+std::vector<GrowthEvent> CrackGrowth::take_events() {
+  std::vector<GrowthEvent> e;
+  e.swap(events_);
+  return e;
+}
+
+std::vector<std::string> CrackGrowth::columns() {
+  return {"time_s", "crack", "tip", "x_m", "y_m", "length_m", "speed_m_per_s", "kink_rad",
+          "J1_J_per_m2", "KI_Pa_sqrt_m", "KII_Pa_sqrt_m", "criterion_ratio", "stop"};
+}
+
+std::vector<double> CrackGrowth::row(const GrowthEvent& e) {
+  return {e.time, double(e.crack), double(e.tip), e.to.x(), e.to.y(), e.length, e.speed, e.angle,
+          e.J,    e.KI,            e.KII,         e.ratio,  double(static_cast<int>(e.stop))};
+}
+
+void CrackGrowth::save(StateWriter& w) const {
+  std::vector<double> grown, last;
+  for (const auto& s : state_) grown.push_back(s.grown), last.push_back(s.last_time);
+  w.array(grown), w.array(last);
+  for (const auto& c : m_.cracks) w.array(c.tip);
+}
+
+void CrackGrowth::load(StateReader& r) {
+  std::vector<double> grown(state_.size()), last(state_.size());
+  r.array(grown, "crack growth"), r.array(last, "crack growth");
+  for (std::size_t k = 0; k < state_.size(); ++k) state_[k] = {grown[k], last[k]};
+  for (auto& c : m_.cracks) {
+    r.array(c.tip, "crack tips");
+    c.simplices.clear();
+    for (std::size_t k = 0; k + 1 < c.points.size(); ++k)
+      c.simplices.push_back({static_cast<int32_t>(k), static_cast<int32_t>(k + 1)});
+  }
+  events_.clear();
+}
+
+}  // namespace cleave

@@ -1,0 +1,77 @@
+// Growing 2D cracks (issue 18; seed 000's closing aim, NairnMPM's explicit-crack propagation): at a
+// growth check, every tip of a crack with "propagation" asks its initiation criterion with the J
+// and K of the current state and the toughness of the material at the tip; where it holds, the
+// tip advances by the growth length in the direction its rule gives, as one new segment whose
+// faces start together (no opening). Stops: a tip whose ligament ahead is under a cell is carried
+// through the free edge (an edge crack, its end a mouth, as the scene reader does with an end near
+// an edge); a tip that would meet a crack within a cell joins it there and stops; a tip whose next
+// point would leave the grid's inner cells stops with a warning. The growth repeats at later checks
+// while the criterion holds, capped at the optional speed. Every event is a row of crack_growth.csv.
+//
+// The state (crack points, tip flags, grown lengths, last growth times) is restart state, so a
+// resumed run grows the same path bit for bit; nothing here depends on the thread count.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "libmpm/crack/propagation.hpp"
+#include "libmpm/crack/tip_parameters.hpp"
+#include "libmpm/method/state_io.hpp"
+#include "libmpm/mpm/model.hpp"
+
+namespace cleave {
+
+// Why a tip stopped growing (crack_growth.csv's "stop" column).
+enum class GrowthStop { None = 0, FreeEdge = 1, OtherCrack = 2, GridEdge = 3 };
+
+// One growth event: a row of crack_growth.csv.
+struct GrowthEvent {
+  double time = 0.0;
+  int crack = 0, tip = 0;
+  Vec<2> to = Vec<2>::Zero();   // the tip after the growth
+  double length = 0.0;          // the advance, m
+  double speed = 0.0;           // length / time since the tip's previous growth (0 on its first)
+  double angle = 0.0;           // the kink from the tip's previous direction, rad
+  double J = 0.0, KI = 0.0, KII = 0.0, ratio = 0.0;  // what the criterion saw; ratio >= 1
+  GrowthStop stop = GrowthStop::None;
+};
+
+class CrackGrowth {
+ public:
+  // m.propagation says which cracks grow (none: inactive).
+  explicit CrackGrowth(Model<2>& m);
+  bool active() const { return active_; }
+  // Is a check due after step `step` (a crack's check_interval divides it)?
+  bool due(long step) const;
+  // Grows the tips whose criterion holds in the state of `tips` (J and K at every tip now); returns
+  // whether a crack changed. Warnings (a tip that stopped at the grid's edge) go to `warnings`.
+  bool grow(double time, long step, const std::vector<crack::TipRecord>& tips, std::vector<std::string>& warnings);
+  // The events since the last call, in order.
+  std::vector<GrowthEvent> take_events();
+  static std::vector<std::string> columns();
+  static std::vector<double> row(const GrowthEvent& e);
+
+  // Restart state: the cracks' points and faces (their counts change as they grow), tip flags, grown
+  // lengths and last growth times.
+  void save(StateWriter& w) const;
+  void load(StateReader& r);
+
+ private:
+  struct TipState {
+    double grown = 0.0;       // m, for the resistance curve
+    double last_time = -1.0;  // of the last growth; < 0 before the first
+  };
+  Model<2>& m_;
+  bool active_ = false;
+  std::vector<TipState> state_;  // crack * 2 + end
+  std::vector<GrowthEvent> events_;
+  std::vector<double> half_size_;  // half each particle's spacing (from its area), for the ligament
+};
+
+// The material ahead of point x along unit direction e, within `reach`: the distance from x to where
+// it ends (0 when none lies ahead). A particle counts when its domain (half its spacing about it)
+// reaches the ray; tol widens that test, for rows that sit exactly half a spacing off the ray.
+double material_ahead(const Model<2>& m, const std::vector<double>& half_size, const Vec<2>& x, const Vec<2>& e,
+                      double reach, double tol);
+
+}  // namespace cleave
