@@ -52,7 +52,17 @@ double max_energy_release_angle(double KI, double KII) {
 }
 
 double rayleigh_speed(double shear_modulus, double density, double nu) {
-  return std::sqrt(shear_modulus / density) * (0.862 + 1.14 * nu) / (1.0 + nu);
+  // The root x = (c_R / c_s)^2 in (0, 1) of the Rayleigh equation
+  // (2 - x)^2 = 4 sqrt(1 - x k) sqrt(1 - x), k = (c_s / c_d)^2 = (1 - 2 nu) / (2 (1 - nu)), by bisection:
+  // the left side less the right is x (2 k - 2) < 0 just above the trivial root 0, and 1 at x = 1.
+  const double k = (1.0 - 2.0 * nu) / (2.0 * (1.0 - nu));
+  auto f = [&](double x) { return (2.0 - x) * (2.0 - x) - 4.0 * std::sqrt(1.0 - x * k) * std::sqrt(1.0 - x); };
+  double lo = 1e-6, hi = 1.0;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (f(mid) < 0.0 ? lo : hi) = mid;
+  }
+  return std::sqrt(shear_modulus / density * 0.5 * (lo + hi));
 }
 
 double Propagation::resistance_factor(double da) const {
@@ -85,12 +95,10 @@ Propagation parse_propagation(const nlohmann::json& j, const std::string& key_pa
                      "must lie in [0.1, 2] cells (got " + r["growth_length"].dump() +
                          "): below a tenth of a cell the segments are shorter than the crossing test resolves; "
                          "above two cells a step skips the J contour's reach");
-  if (r.has("max_speed_cR")) {
-    p.max_speed_cR = r.number("max_speed_cR");
-    if (!(p.max_speed_cR > 0.0 && p.max_speed_cR <= 1.0))
-      throw SceneError(r.at("max_speed_cR"), "must lie in (0, 1]: a fraction of the Rayleigh speed (got " +
-                                                 r["max_speed_cR"].dump() + ")");
-  }
+  p.max_speed_cR = r.number_or("max_speed_cR", p.max_speed_cR);
+  if (!(p.max_speed_cR > 0.0 && p.max_speed_cR <= 2.0))
+    throw SceneError(r.at("max_speed_cR"), "must lie in (0, 2]: the tip's speed cap as a multiple of the Rayleigh "
+                                           "speed (got " + r["max_speed_cR"].dump() + ")");
   p.check_interval = r.integer_or("check_interval", 1, 1, 1000000);
   if (r.has("resistance_curve")) {
     const auto& rc = r["resistance_curve"];

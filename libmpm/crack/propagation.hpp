@@ -46,15 +46,18 @@ std::pair<double, double> kink_intensities(double KI, double KII, double theta);
 // |theta| <= 80 degrees to 1e-6 rad; 0 for a pure mode I tip.
 double max_energy_release_angle(double KI, double KII);
 
-// The Rayleigh wave speed from the shear speed and Poisson's ratio (Viktorov's approximation,
-// within 0.5 % for 0 <= nu <= 0.5): c_R = c_s (0.862 + 1.14 nu) / (1 + nu).
+// The Rayleigh wave speed from the shear modulus, density and Poisson's ratio (the root of the
+// Rayleigh equation; nu of the solid: plane strain and 3D; a plate in plane stress passes
+// nu / (1 + nu)).
 double rayleigh_speed(double shear_modulus, double density, double nu);
 
 // The scene key cracks[i].propagation (docs/scenes.md, "Growing cracks"):
 //   "criterion": an InitiationCriteria name (default "energy_release_rate": J >= G_c),
 //   "direction": a DirectionRules name (default "max_hoop_stress"),
 //   "growth_length": the advance per growth, in cells, in [0.1, 2] (default 0.5),
-//   "max_speed_cR": cap on the tip speed as a fraction of the Rayleigh speed, in (0, 1] (default none),
+//   "max_speed_cR": cap on the tip speed as a multiple of the Rayleigh speed, in (0, 2] (default 1: a
+//                   brittle crack cannot outrun the Rayleigh wave, Freund 1990, but the criterion alone
+//                   lets a tip grow a step at every check while J stays above G_c, half a cell a step),
 //   "check_interval": steps between growth checks (default 1),
 //   "resistance_curve": [[da, factor], ...]: the toughness times factor(da) after a growth of da
 //                       (scene length unit), linear between the points, flat beyond (default 1).
@@ -62,7 +65,7 @@ struct Propagation {
   std::string criterion = "energy_release_rate";
   std::string direction = "max_hoop_stress";
   double growth_length = 0.5;  // cells
-  double max_speed_cR = 0.0;   // 0: no cap
+  double max_speed_cR = 1.0;
   int check_interval = 1;
   std::vector<std::pair<double, double>> resistance;  // (da in m, factor), da ascending
   // The resistance factor after a growth of da metres.
@@ -71,7 +74,7 @@ struct Propagation {
 
 // Reads cracks[i].propagation at key_path; length_scale converts the scene's lengths to metres.
 // SceneError naming the key for an unknown criterion or direction (listing the valid ones), a
-// growth length outside [0.1, 2] cells, a speed cap outside (0, 1], a check interval below 1, or a
+// growth length outside [0.1, 2] cells, a speed cap outside (0, 2], a check interval below 1, or a
 // resistance curve that is not [[da >= 0 ascending, factor > 0], ...].
 Propagation parse_propagation(const nlohmann::json& j, const std::string& key_path, double length_scale);
 

@@ -31,6 +31,7 @@ std::vector<std::pair<std::string, std::vector<std::string>>> SceneMethod::table
   auto of = [](const auto& m) {
     std::vector<std::pair<std::string, std::vector<std::string>>> t{{"global.csv", m.global_columns()}};
     if (auto c = m.tip_columns(); !c.empty()) t.push_back({m.tip_file(), std::move(c)});
+    if (auto c = m.event_columns(); !c.empty()) t.push_back({m.event_file(), std::move(c)});
     return t;
   };
   return m2_ ? of(*m2_) : of(*m3_);

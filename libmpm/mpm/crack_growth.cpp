@@ -47,10 +47,16 @@ CrackGrowth::CrackGrowth(Model<2>& m) : m_(m) {
       half_size_[p] = 0.5 * std::sqrt(m.particles.volume0[p] / b.thickness);
 }
 
-bool CrackGrowth::due(long step) const {
+bool CrackGrowth::due(long step, double time) const {
   if (!active_) return false;
-  for (const auto& p : m_.propagation)
-    if (p && step % p->check_interval == 0) return true;
+  for (const auto& c : m_.cracks) {
+    const auto& p = m_.propagation[static_cast<std::size_t>(c.id)];
+    if (!p || step % p->check_interval != 0) continue;
+    for (int end = 0; end < 2; ++end) {
+      const TipState& st = state_[2 * c.id + end];
+      if (c.tip[end] && (st.last_time < 0.0 || time - st.last_time >= st.wait)) return true;
+    }
+  }
   return false;
 }
 
@@ -76,10 +82,9 @@ bool CrackGrowth::grow(double time, long step, const std::vector<crack::TipRecor
     const double ratio = crack::InitiationCriteria::instance().at(prop->criterion)(t);
     if (!(ratio >= 1.0)) continue;
     const double da = prop->growth_length * h;
-    if (prop->max_speed_cR > 0.0 && st.last_time >= 0.0) {
-      const double cap = prop->max_speed_cR * crack::rayleigh_speed(mu, mat.density(), nu);
-      if ((time - st.last_time) * cap < da * (1.0 - 1e-12)) continue;  // too soon after the last growth
-    }
+    const double nu_solid = m_.analysis == Analysis::PlaneStress ? nu / (1.0 + nu) : nu;
+    const double wait = da * (1.0 - 1e-12) / (prop->max_speed_cR * crack::rayleigh_speed(mu, mat.density(), nu_solid));
+    if (st.last_time >= 0.0 && time - st.last_time < wait) continue;  // too soon after the last growth
     const double theta = crack::DirectionRules::instance().at(prop->direction)(t);
     const crack::TipFrame fr = crack::tip_frame(c, rec.end);
     const Vec<2> dir = std::cos(theta) * fr.e1 + std::sin(theta) * fr.e2;
@@ -127,10 +132,19 @@ bool CrackGrowth::grow(double time, long step, const std::vector<crack::TipRecor
       c.simplices.push_back({static_cast<int32_t>(k), static_cast<int32_t>(k + 1)});
     c.update_extent();
     if (stop != GrowthStop::None) c.tip[rec.end] = 0;
-    const double speed = st.last_time >= 0.0 && time > st.last_time ? length / (time - st.last_time) : 0.0;
-    events_.push_back({time, rec.crack, rec.end, to, length, speed, theta, rec.J1, rec.KI, rec.KII, ratio, stop});
     st.grown += length;
     st.last_time = time;
+    st.wait = wait;
+    st.t[st.count % kHistory] = time, st.s[st.count % kHistory] = st.grown;
+    ++st.count;
+    // The speed since the newest growth at least kSpeedCells behind (or the oldest kept).
+    double speed = 0.0;
+    for (long k = st.count - 2; k >= 0 && k >= st.count - kHistory; --k) {
+      const int i = static_cast<int>(k % kHistory);
+      if (time > st.t[i]) speed = (st.grown - st.s[i]) / (time - st.t[i]);
+      if (st.grown - st.s[i] >= kSpeedCells * h * (1.0 - 1e-9)) break;
+    }
+    events_.push_back({time, rec.crack, rec.end, to, length, speed, theta, rec.J1, rec.KI, rec.KII, ratio, stop});
     changed = true;
   }
   return changed;
@@ -153,16 +167,12 @@ std::vector<double> CrackGrowth::row(const GrowthEvent& e) {
 }
 
 void CrackGrowth::save(StateWriter& w) const {
-  std::vector<double> grown, last;
-  for (const auto& s : state_) grown.push_back(s.grown), last.push_back(s.last_time);
-  w.array(grown), w.array(last);
+  w.array(state_);
   for (const auto& c : m_.cracks) w.array(c.tip);
 }
 
 void CrackGrowth::load(StateReader& r) {
-  std::vector<double> grown(state_.size()), last(state_.size());
-  r.array(grown, "crack growth"), r.array(last, "crack growth");
-  for (std::size_t k = 0; k < state_.size(); ++k) state_[k] = {grown[k], last[k]};
+  r.array(state_, "crack growth states");
   for (auto& c : m_.cracks) {
     r.array(c.tip, "crack tips");
     c.simplices.clear();

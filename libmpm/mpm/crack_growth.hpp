@@ -30,7 +30,7 @@ struct GrowthEvent {
   int crack = 0, tip = 0;
   Vec<2> to = Vec<2>::Zero();   // the tip after the growth
   double length = 0.0;          // the advance, m
-  double speed = 0.0;           // length / time since the tip's previous growth (0 on its first)
+  double speed = 0.0;           // over the tip's last 4 cells of growth (kSpeedCells; 0 on its first)
   double angle = 0.0;           // the kink from the tip's previous direction, rad
   double J = 0.0, KI = 0.0, KII = 0.0, ratio = 0.0;  // what the criterion saw; ratio >= 1
   GrowthStop stop = GrowthStop::None;
@@ -41,8 +41,10 @@ class CrackGrowth {
   // m.propagation says which cracks grow (none: inactive).
   explicit CrackGrowth(Model<2>& m);
   bool active() const { return active_; }
-  // Is a check due after step `step` (a crack's check_interval divides it)?
-  bool due(long step) const;
+  // Is a check due after step `step` at `time`: a crack's check_interval divides the step, and one of
+  // its tips may grow now (the speed cap lets it; a tip that grew less than growth_length / cap ago
+  // cannot, so J is not evaluated for it: a running tip is checked every few steps, not every step)?
+  bool due(long step, double time) const;
   // Grows the tips whose criterion holds in the state of `tips` (J and K at every tip now); returns
   // whether a crack changed. Warnings (a tip that stopped at the grid's edge) go to `warnings`.
   bool grow(double time, long step, const std::vector<crack::TipRecord>& tips, std::vector<std::string>& warnings);
@@ -57,9 +59,19 @@ class CrackGrowth {
   void load(StateReader& r);
 
  private:
+  // A tip's speed is taken over its last 4 cells of growth, the J contour's diameter at its default
+  // radius: a tip grows a step at a time, as soon as J reaches G_c again, so the time between two
+  // steps measures the check's cadence more than the speed (one step later read 7 km/s in steel).
+  static constexpr double kSpeedCells = 4.0;
+  static constexpr int kHistory = 41;  // growths kept: 4 cells at the shortest growth length, 0.1 cell
   struct TipState {
     double grown = 0.0;       // m, for the resistance curve
     double last_time = -1.0;  // of the last growth; < 0 before the first
+    double wait = 0.0;        // s after the last growth before the next may come (the speed cap)
+    // The last kHistory growths: time and total grown length after each (a ring, newest at
+    // (count - 1) % kHistory).
+    double t[kHistory] = {}, s[kHistory] = {};
+    long count = 0;
   };
   Model<2>& m_;
   bool active_ = false;

@@ -15,9 +15,11 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 #include <vector>
 
+#include "libmpm/crack/propagation.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/mpm/model.hpp"
 #include "libmpm/mpm/stencil.hpp"
@@ -27,6 +29,8 @@ namespace cleave {
 // Least distance behind a tip, in cells, at which the opening ratio that splits J into K_I and K_II
 // is read.
 inline constexpr double kCodCells = 3.0;
+// How many points, half a cell apart from there on, the opening ratio is fitted over.
+inline constexpr int kCodPoints = 5;
 
 namespace detail {
 // The cracks as far as they come within `radius` (max-norm) of x: for each crack with a segment whose
@@ -86,11 +90,14 @@ class TipNodeSums {
   TipFieldSums* get(int64_t node, uint32_t key) {
     const int64_t l = local(node);
     if (l < 0) return nullptr;
-    int32_t* link = &head_[l];
-    while (*link >= 0 && slots_[*link].key < key) link = &slots_[*link].next;
-    if (*link >= 0 && slots_[*link].key == key) return &slots_[*link].sums;
-    slots_.push_back({key, *link, {}});
-    *link = static_cast<int32_t>(slots_.size() - 1);
+    // The link to follow: the node's head (prev < 0) or slot prev's next. (Indices, not pointers:
+    // push_back below may move the slots.)
+    int32_t prev = -1, e = head_[l];
+    while (e >= 0 && slots_[e].key < key) prev = e, e = slots_[e].next;
+    if (e >= 0 && slots_[e].key == key) return &slots_[e].sums;
+    slots_.push_back({key, e, {}});
+    const auto added = static_cast<int32_t>(slots_.size() - 1);
+    (prev < 0 ? head_[l] : slots_[prev].next) = added;
     return &slots_.back().sums;
   }
   const TipFieldSums* find(int64_t node, uint32_t key) const {
@@ -328,20 +335,69 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         });
         J += P.mass[p] / thickness[p] * (grad_u(p).transpose() * accel(p) - gv.transpose() * (v_rel(p) - v_tip));
       }
-      rec.J1 = J.dot(f.e1);
+      // A kinked crack (one that grew off its line) has faces inside the contour that are not along
+      // e1, and traction-free faces carry the energy term there: J1 at the tip = the contour's J1 +
+      // sum over those faces of (W- - W+) (n . e1) ds (n the face's normal towards "+"; the
+      // divergence theorem over the contour's region, whose boundary they are). Without it J1 of a
+      // tip that had just kinked by 70 degrees read -1e4 J/m^2 where the plate's loading gave +2e4.
+      // Faces along e1 (every straight crack) add nothing and are skipped.
+      double faces = 0.0;
+      {
+        const std::size_t n = c.points.size();
+        const auto vertex = [&](std::size_t k) { return c.points[end == 1 ? n - 1 - k : k]; };
+        const double probe = 1e-3 * h, piece = 0.25 * h;
+        double along = 0.0;
+        for (std::size_t k = 0; k + 1 < n && along <= 2.0 * contour_extent + h; ++k) {
+          const V a = vertex(k), b = vertex(k + 1);
+          const double len = (a - b).norm();
+          along += len;
+          const V ahead = (a - b) / len, nrm(-ahead.y(), ahead.x());
+          const double ne1 = nrm.dot(f.e1);
+          if (std::abs(ne1) < 1e-9) continue;
+          const int pieces = std::max(1, static_cast<int>(std::ceil(len / piece)));
+          for (int i = 0; i < pieces; ++i) {
+            const V x = b + ((i + 0.5) / pieces) * (a - b);
+            detail::TipFieldSums up, down;
+            if (!crack::inside_contour(f, ts, h, x)) continue;
+            if (interpolate(x + probe * nrm, up) && interpolate(x - probe * nrm, down))
+              faces += (len / pieces) * (down.energy - up.energy) * ne1;
+          }
+        }
+      }
+      rec.J1 = J.dot(f.e1) + faces;
       rec.J2 = J.dot(f.e2);
 
-      // Near-tip openings behind the tip at the contour radius, but at least 3 cells: each face's
-      // field, probed just off the crack line on its side. Closer in, the tip's own cells distort
-      // the opening ratio (inclined centre crack, tan 30 = 0.577: 0.642, 0.609, 0.581, 0.573, 0.571
-      // at 1-5 cells behind the tip; docs/validation.md).
-      const crack::CrackPoint cp = crack::point_behind_tip(c, end, std::max(ts.radius, kCodCells) * h);
-      detail::TipFieldSums up, down;
-      const double probe = 1e-3 * h;
-      if (interpolate(cp.x + probe * cp.normal, up) && interpolate(cp.x - probe * cp.normal, down)) {
-        const V d = up.u - down.u;
-        rec.cod_I = d.dot(f.e2);
-        rec.cod_II = d.dot(f.e1);
+      // Near-tip openings behind the tip from the contour radius, but at least 3 cells, over the
+      // next kCodPoints half cells: each face's field, probed just off the crack line on its side.
+      // Closer in, the tip's own cells distort the opening ratio (inclined centre crack, tan 30 =
+      // 0.577: 0.642, 0.609, 0.581, 0.573, 0.571 at 1-5 cells behind the tip; docs/validation.md).
+      // The ratio K_II / K_I is the least-squares slope of the tangential against the normal
+      // openings over those points (issue 14 item 4: one point's tangential opening carries the
+      // discrete faces' noise, which turned a growing crack off its plane).
+      // A point on a segment off e1 (the crack kinked since, less than the reading distance behind
+      // the tip) holds the openings of the crack's earlier direction: a small kink's first-order
+      // intensities (Cotterell & Rice) carry them to the tip's direction. Without this a tip that
+      // kinked by 70 degrees under mode II read the old mode II ratio and kinked by 70 degrees again.
+      {
+        double s11 = 0.0, s12 = 0.0, sum1 = 0.0;
+        int read = 0;
+        const double probe = 1e-3 * h;
+        for (int k = 0; k < kCodPoints; ++k) {
+          const crack::CrackPoint cp = crack::point_behind_tip(c, end, (std::max(ts.radius, kCodCells) + 0.5 * k) * h);
+          detail::TipFieldSums up, down;
+          if (!interpolate(cp.x + probe * cp.normal, up) || !interpolate(cp.x - probe * cp.normal, down)) continue;
+          const V d = up.u - down.u;
+          double o1 = d.dot(f.e2), o2 = d.dot(f.e1);
+          const V ahead(cp.normal.y(), -cp.normal.x());
+          const double phi = std::atan2(ahead.x() * f.e1.y() - ahead.y() * f.e1.x(), ahead.dot(f.e1));
+          if (std::abs(phi) > 1e-6) std::tie(o1, o2) = crack::kink_intensities(d.dot(cp.normal), d.dot(ahead), phi);
+          s11 += o1 * o1, s12 += o1 * o2, sum1 += o1;
+          ++read;
+        }
+        if (read > 0) {
+          rec.cod_I = sum1 / read;
+          rec.cod_II = s11 > 0.0 ? rec.cod_I * s12 / s11 : 0.0;
+        }
       }
       double mu = 0.0, nu = 0.0;
       if (!m.materials[P.material[nearest]]->isotropic_elastic(mu, nu))

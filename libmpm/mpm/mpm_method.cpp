@@ -84,7 +84,7 @@ class MpmMethod final : public Method<Dim> {
           out.push_back(format("crack '%s' grows: %s criterion, %s direction, %.3g-cell steps, checked every %d step%s%s",
                                c.name.c_str(), p->criterion.c_str(), p->direction.c_str(), p->growth_length,
                                p->check_interval, p->check_interval == 1 ? "" : "s",
-                               p->max_speed_cR > 0 ? format(", speed at most %.3g c_R", p->max_speed_cR).c_str() : "") +
+                               format(", speed at most %.3g c_R", p->max_speed_cR).c_str()) +
                         "; crack_growth.csv");
     describe_body_contact(m, out);
     out.push_back(format("output: every %.6g s (%zu fields), global.csv every %.6g s", m.output.interval,
@@ -129,7 +129,7 @@ class MpmMethod final : public Method<Dim> {
   StepProblem step() override {
     StepProblem p = stepper_->step();
     if constexpr (Dim == 2)
-      if (growth_ && growth_->due(stepper_->step_count())) grow_cracks();
+      if (growth_ && growth_->due(stepper_->step_count(), stepper_->time())) grow_cracks();
     if (relax_ && relax_->due(stepper_->step_count())) {
       const auto g = stepper_->global_state();
       m_.damping = relax_->check(g.time, g.strain, g.kinetic, m_.particles);

@@ -1,0 +1,325 @@
+// Growing cracks (issue 18): the closed forms of the criteria, the scene key and its bad input, and
+// the validations that run in CI: the kink of an inclined centre crack against the maximum hoop
+// stress angle of its closed-form K_II / K_I (validation 1), a mode I crack that runs on its plane
+// below the Rayleigh speed and ends at the free edge (validation 2), a crack that meets another,
+// and the same path after a resume and on any thread count. Figures: docs/validation.md, "Growing
+// cracks"; the Kalthoff-Winkler runs: apps/cleave-bench/kalthoff.sh.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "libmpm/crack/propagation.hpp"
+#include "libmpm/mpm/crack_growth.hpp"
+#include "support.hpp"
+
+namespace cleave {
+namespace {
+
+using nlohmann::json;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+
+// --- closed forms ----------------------------------------------------------------------------
+
+TEST(Propagation, HoopStressAngleIsErdoganSihs) {
+  EXPECT_EQ(crack::hoop_stress_angle(1.0, 0.0), 0.0);
+  // Pure mode II: -+70.53 degrees (2 arctan(-1 / sqrt(2))), K_II > 0 kinking towards -e2.
+  EXPECT_NEAR(crack::hoop_stress_angle(0.0, 1.0), -2.0 * std::atan(1.0 / std::sqrt(2.0)), 1e-12);
+  EXPECT_NEAR(crack::hoop_stress_angle(0.0, -1.0), 2.0 * std::atan(1.0 / std::sqrt(2.0)), 1e-12);
+  // K_II = K_I: 2 arctan(-1 / 2) = -53.13 degrees.
+  EXPECT_NEAR(crack::hoop_stress_angle(1.0, 1.0), 2.0 * std::atan(-0.5), 1e-12);
+  // At its angle the hoop stress is stationary, and for pure mode I it is K_I.
+  for (double r : {0.1, 0.5, 1.0, 3.0}) {
+    const double t = crack::hoop_stress_angle(1.0, r), e = 1e-5;
+    const double d = crack::hoop_stress_intensity(1.0, r, t + e) - crack::hoop_stress_intensity(1.0, r, t - e);
+    EXPECT_NEAR(d / (2 * e), 0.0, 1e-6) << "K_II / K_I = " << r;
+  }
+  EXPECT_DOUBLE_EQ(crack::hoop_stress_intensity(2.0, 0.0, 0.0), 2.0);
+}
+
+TEST(Propagation, KinkIntensitiesAreTheTipsOwnStraightAheadAndTheEnergyRateAngleIsSymmetric) {
+  const auto [k1, k2] = crack::kink_intensities(3.0, -2.0, 0.0);
+  EXPECT_EQ(k1, 3.0);
+  EXPECT_EQ(k2, -2.0);
+  EXPECT_EQ(crack::max_energy_release_angle(1.0, 0.0), 0.0);
+  for (double r : {0.2, 1.0, 4.0}) {
+    const double t = crack::max_energy_release_angle(1.0, r);
+    EXPECT_LT(t, 0.0);
+    EXPECT_NEAR(crack::max_energy_release_angle(1.0, -r), -t, 1e-6);
+    // Close to the hoop stress angle (the two criteria differ by a few degrees at most here).
+    EXPECT_NEAR(t, crack::hoop_stress_angle(1.0, r), 6.0 * kDeg) << "K_II / K_I = " << r;
+  }
+}
+
+// Every registered criterion reads 1 at the toughness of a pure mode I tip (J = G_c, K_I = K_Ic),
+// and every direction rule goes straight ahead there.
+TEST(Propagation, EveryRegisteredCriterionIsCriticalAtThePureModeIToughnessAndEveryRuleGoesStraight) {
+  crack::TipLoading t;
+  t.e_prime = 2e11, t.KIc = t.KI = 3e6, t.Gc = t.J = t.KI * t.KI / t.e_prime;
+  const auto criteria = crack::InitiationCriteria::instance().names();
+  EXPECT_EQ(criteria, (std::vector<std::string>{"energy_release_rate", "stress_intensity", "max_hoop_stress",
+                                                "max_energy_release_rate"}));
+  for (const auto& n : criteria) EXPECT_NEAR(crack::InitiationCriteria::instance().at(n)(t), 1.0, 1e-12) << n;
+  const auto rules = crack::DirectionRules::instance().names();
+  EXPECT_EQ(rules, (std::vector<std::string>{"max_hoop_stress", "max_energy_release_rate", "straight"}));
+  for (const auto& n : rules) EXPECT_EQ(crack::DirectionRules::instance().at(n)(t), 0.0) << n;
+}
+
+TEST(Propagation, RayleighSpeedIsTheRootOfTheRayleighEquation) {
+  // c_R / c_s, tabulated (Graff, Wave Motion in Elastic Solids, to 4 digits): 0.8740 (nu = 0),
+  // 0.9194 (0.25), 0.9274 (0.3), 0.9554 (0.5); nu = 0.25 is the exact sqrt(2 - 2 / sqrt(3)).
+  const double exact[][2] = {{0.0, 0.8740}, {0.25, 0.9194}, {0.3, 0.9274}, {0.5, 0.9554}};
+  for (const auto& e : exact) EXPECT_NEAR(crack::rayleigh_speed(1.0, 1.0, e[0]), e[1], 1e-4) << "nu " << e[0];
+  EXPECT_NEAR(crack::rayleigh_speed(1.0, 1.0, 0.25), std::sqrt(2.0 - 2.0 / std::sqrt(3.0)), 1e-12);
+}
+
+TEST(Propagation, ResistanceCurveIsLinearBetweenItsPointsAndFlatBeyond) {
+  crack::Propagation p;
+  EXPECT_EQ(p.resistance_factor(1.0), 1.0);
+  p.resistance = {{0.0, 1.0}, {0.002, 1.5}};
+  EXPECT_DOUBLE_EQ(p.resistance_factor(0.001), 1.25);
+  EXPECT_DOUBLE_EQ(p.resistance_factor(0.01), 1.5);
+}
+
+// --- a plate whose crack grows: Freund's plate (data/scenes/freund.json) ------------------------
+
+// The steel plate of freund.json (1 mm cells, a crack from the left edge to its centre on a node
+// line, 100 MPa stepped onto its faces) with a growing crack: K_Ic = 10 MPa sqrt(m), reached about
+// 0.6 us after the waves meet on the crack line.
+json growing_plate(double cell_mm = 1.0, double end_us = 30.0) {
+  json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/freund.json");
+  s["resolution"] = cell_mm;
+  s["materials"][0]["K_Ic"] = 10.0 / std::sqrt(1e-3);  // MPa sqrt(mm)
+  s["cracks"][0]["propagation"] = json::object();
+  s["cracks"][0]["segment_length"] = cell_mm;
+  s["crack_tips"].erase("volume_term");
+  s["crack_tips"]["radius"] = 2;
+  s["time"] = {{"end", end_us * 1e-6}, {"cfl", 0.4}};
+  s["output"] = {{"interval", end_us * 1e-6}, {"global_interval", 1e-6}, {"tip_interval", 1e-6}};
+  return s;
+}
+
+// Steps the scene's MPM to its end; the growth events on the way.
+std::vector<GrowthEvent> grow(const json& s, Model<2>* keep = nullptr) {
+  Model<2> local;
+  Model<2>& m = keep ? *keep : local;
+  m = build_model<2>(s);
+  auto method = make_mpm_method<2>(m);
+  while (method->time() < m.end_time - 1e-9 * m.dt) EXPECT_FALSE(method->step());
+  std::vector<GrowthEvent> ev;
+  for (const auto& r : method->take_event_rows()) {
+    GrowthEvent e;
+    e.time = r[0], e.crack = int(r[1]), e.tip = int(r[2]), e.to = {r[3], r[4]}, e.length = r[5], e.speed = r[6];
+    e.angle = r[7], e.J = r[8], e.KI = r[9], e.KII = r[10], e.ratio = r[11], e.stop = GrowthStop(int(r[12]));
+    ev.push_back(e);
+  }
+  return ev;
+}
+
+// Validation 2: a mode I crack under the stepped load grows straight on (its line y = 0 is a node
+// line: the crack of freund.json), by 50 cells to the plate's far edge, where it is carried through
+// and stops. Deviation from its plane below a tenth of a cell; its speed below the Rayleigh speed,
+// measured over 4 cells of growth (the J contour's diameter: over shorter spans the speed is the
+// cadence of single growth steps, up to 0.5 cell a step). docs/validation.md: the same crack a third
+// of a cell off the node line wanders by up to 0.8 cell (a miss).
+TEST(CrackGrowth, AModeICrackRunsOnItsPlaneBelowTheRayleighSpeedToTheFreeEdge) {
+  const auto ev = grow(growing_plate(1.0, 40.0));
+  ASSERT_GT(ev.size(), 40u);
+  const double h = 1e-3, E = 200e9, nu = 0.3, rho = 7900;
+  const double cR = crack::rayleigh_speed(E / (2 * (1 + nu)), rho, nu);
+  double dev = 0, vmax = 0;
+  for (const auto& e : ev) {
+    dev = std::max(dev, std::abs(e.to.y()) / h);
+    EXPECT_NEAR(e.angle, 0.0, 0.01);  // rad
+    vmax = std::max(vmax, e.speed);
+  }
+  std::printf("mode I growth: %zu growths from x = %.2f to %.2f mm, largest deviation %.2e cell, largest speed over 4 "
+              "cells %.0f m/s = %.3f c_R, first at %.3f us\n",
+              ev.size(), ev.front().to.x() * 1e3, ev.back().to.x() * 1e3, dev, vmax, vmax / cR, ev.front().time * 1e6);
+  EXPECT_GT(ev.back().to.x() - ev.front().to.x(), 20 * h);
+  EXPECT_LT(dev, 0.1);
+  EXPECT_LT(vmax, cR);
+  EXPECT_EQ(ev.back().stop, GrowthStop::FreeEdge);
+  EXPECT_GT(ev.back().to.x(), 52e-3);  // through the edge at x = 52 mm
+  for (std::size_t k = 0; k + 1 < ev.size(); ++k) EXPECT_EQ(ev[k].stop, GrowthStop::None);
+
+  // The same crack 0.3 cell off the node line (plate and crack moved up by 0.3 mm): the MISS of
+  // docs/validation.md, printed, not asserted. K_II / K_I of +-1-3 % from the faces' discrete
+  // fields turn each half-cell step by +-1-4 degrees, and the path wanders.
+  json off = growing_plate(1.0, 40.0);
+  off["bodies"][0]["shape"]["min"] = {-52, -17.7};
+  off["bodies"][0]["shape"]["max"] = {52, 18.3};
+  off["cracks"][0]["from"] = {-53, 0.3};
+  off["cracks"][0]["to"] = {0.5, 0.3};
+  const auto ev_off = grow(off);
+  double dev20 = 0, dev_all = 0;
+  for (const auto& e : ev_off) {
+    const double d = std::abs(e.to.y() - 0.3e-3) / h;
+    dev_all = std::max(dev_all, d);
+    if (e.to.x() - ev_off.front().to.x() <= 20 * h) dev20 = std::max(dev20, d);
+  }
+  std::printf("mode I growth 0.3 cell off the node line: largest deviation %.2f cell over the first 20 cells, %.2f over "
+              "%.1f mm (MISS: asserted only on the node line)\n",
+              dev20, dev_all, ev_off.empty() ? 0.0 : (ev_off.back().to.x() - ev_off.front().to.x()) * 1e3);
+}
+
+// A growing crack that comes within a cell of another joins it just past it and stops there.
+TEST(CrackGrowth, ATipThatReachesAnotherCrackJoinsItAndStops) {
+  json s = growing_plate(1.0, 12.0);
+  s["cracks"].push_back({{"name", "wall"}, {"from", {10.3, -6}}, {"to", {10.3, 6}}, {"segment_length", 1}, {"tips", "none"}});
+  Model<2> m;
+  const auto ev = grow(s, &m);
+  ASSERT_FALSE(ev.empty());
+  EXPECT_EQ(ev.back().stop, GrowthStop::OtherCrack);
+  EXPECT_NEAR(ev.back().to.x(), 10.3e-3, 0.05e-3);
+  EXPECT_FALSE(m.cracks[0].tip[1]);
+  EXPECT_NEAR(m.cracks[0].points.back().x(), 10.3e-3, 0.05e-3);
+}
+
+// Checkpoint and --resume, and 1 or 2 threads: the same path bit for bit (2 mm cells).
+TEST(CrackGrowth, ResumeAndThreadCountGiveTheSamePathBitForBit) {
+  const auto base = std::filesystem::path(CLEAVE_BINARY_DIR) / "test_out" / "crack_growth_resume";
+  std::filesystem::remove_all(base);
+  auto read = [](const std::filesystem::path& f) {
+    std::ifstream in(f);
+    std::stringstream b;
+    b << in.rdbuf();
+    return b.str();
+  };
+  json s = growing_plate(2.0, 20.0);
+  s["output"]["interval"] = 4e-6;
+  auto run = [&](const json& scene, const std::string& dir, bool resume, int threads) {
+    const int was = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    Model<2> m = build_model<2>(scene);
+    RunOptions opt;
+    opt.out = base / dir;
+    opt.resume = resume;
+    run_model<2>(m, opt);
+    omp_set_num_threads(was);
+  };
+  run(s, "whole", false, 2);
+  json first = s;
+  first["time"]["end"] = 12e-6;  // stops at the frame (and checkpoint) of 12 us, mid-growth
+  run(first, "split", false, 2);
+  run(s, "split", true, 2);
+  run(s, "one_thread", false, 1);
+  const std::string whole = read(base / "whole" / "crack_growth.csv");
+  EXPECT_GT(std::count(whole.begin(), whole.end(), '\n'), 10);
+  EXPECT_EQ(read(base / "split" / "crack_growth.csv"), whole);
+  EXPECT_EQ(read(base / "one_thread" / "crack_growth.csv"), whole);
+  EXPECT_EQ(read(base / "split" / "cracks_0005.vtu"), read(base / "whole" / "cracks_0005.vtu"));
+}
+
+// --- validation 1: the kink of an inclined centre crack ------------------------------------------
+
+// A centre crack of half-length 8 cells at beta to x in a square plate of side 12 a under remote
+// tension along y (tests/test_crack_tips.cpp's mixed-mode plate, linear shape functions), ramped
+// over 6 wave transits and damped, with G_c at 0.8 of the closed-form static G: the tips grow in a
+// nearly static state, at about 90 % of the load (a load stepped on within a transit overshoots
+// the static K, and the tips grew at 0.6 transits with K_II / K_I 0.52 for 0.58). Maximum hoop
+// stress from the closed form's K_II / K_I = tan beta: -43.2 (30), -53.1 (45), -60.0 degrees (60).
+class KinkAngle : public ::testing::TestWithParam<int> {};
+
+TEST_P(KinkAngle, InclinedCentreCrackKinksAtTheHoopStressAngleOfItsClosedFormKs) {
+  const double beta = GetParam() * kDeg, h = 1.0, a = 8 * h, L = 12 * a;  // mm
+  const double E = 1e9, nu = 0.3, rho = 1000, sigma = 1e6;
+  const double cd = std::sqrt(E / (rho * (1 - nu * nu))), transit = L * 1e-3 / cd, omega1 = kPi * cd / (L * 1e-3);
+  const double K0 = sigma * std::sqrt(kPi * a * 1e-3), KI = K0 * std::cos(beta) * std::cos(beta),
+               KII = K0 * std::sin(beta) * std::cos(beta);
+  const double G = (KI * KI + KII * KII) / E;  // plane stress
+  const Vec<2> d(std::cos(beta), std::sin(beta));
+  json mat = test::material("m", E, nu, rho);
+  mat["G_c"] = 0.8 * G / 1e-3;  // Pa mm
+  json s = {{"units", {{"length", "mm"}, {"stress", "Pa"}, {"density", "kg/m3"}, {"time", "s"}, {"inverse_time", "1/s"}}},
+            {"analysis", {{"type", "plane_stress"}, {"thickness", 1}}},
+            {"grid", {{"cell_size", h}, {"min", {-L / 2 - 2, -L / 2 - 2}}, {"max", {L / 2 + 2, L / 2 + 2}}}},
+            {"mpm", {{"shape_function", "linear"}, {"stress_update", "USAVG"}}},
+            {"materials", {mat}},
+            {"bodies", {{{"name", "plate"}, {"material", "m"},
+                         {"shape", {{"type", "rectangle"}, {"min", {-L / 2, -L / 2}}, {"max", {L / 2, L / 2}}}}}}},
+            {"cracks", {{{"name", "c"}, {"from", {-a * d.x(), -a * d.y()}}, {"to", {a * d.x(), a * d.y()}},
+                         {"segment_length", 0.5 * h}, {"contact", {{"law", "frictionless"}, {"detection", "displacement"}}},
+                         {"propagation", json::object()}}}},
+            {"loads", {{{"type", "traction"}, {"body", "plate"}, {"face", "+y"}, {"traction", {0, sigma}}, {"rise_time", 6 * transit}},
+                       {{"type", "traction"}, {"body", "plate"}, {"face", "-y"}, {"traction", {0, -sigma}}, {"rise_time", 6 * transit}}}},
+            {"damping", {{"kinetic", 2 * omega1}}},
+            {"time", {{"end", 12 * transit}, {"cfl", 0.4}}}};
+  Model<2> m = build_model<2>(s);
+  auto method = make_mpm_method<2>(m);
+  std::vector<std::vector<double>> first(2);  // each tip's first growth
+  while (method->time() < m.end_time - 1e-9 * m.dt && (first[0].empty() || first[1].empty())) {
+    ASSERT_FALSE(method->step());
+    for (auto& r : method->take_event_rows())
+      if (first[int(r[2])].empty()) first[int(r[2])] = r;
+  }
+  const double expect = crack::hoop_stress_angle(KI, KII);
+  for (int tip = 0; tip < 2; ++tip) {
+    ASSERT_FALSE(first[tip].empty()) << "tip " << tip << " never grew";
+    const auto& r = first[tip];
+    std::printf("beta %d: tip %d kinks %.2f deg at t = %.2f transits (K_II / K_I %.4f, closed form %.4f): closed-form "
+                "hoop stress angle %.2f deg, %+.2f deg\n",
+                GetParam(), tip, r[7] / kDeg, r[0] / transit, r[10] / r[9], KII / KI, expect / kDeg, (r[7] - expect) / kDeg);
+    EXPECT_NEAR(r[7], expect, 3.0 * kDeg);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Angles, KinkAngle, ::testing::Values(30, 45, 60),
+                         [](const auto& info) { return "beta" + std::to_string(info.param); });
+
+// --- bad input ---------------------------------------------------------------------------------
+
+TEST(CrackGrowthScene, RefusesBadPropagationKeysNamingThem) {
+  const json base = growing_plate(2.0, 1.0);
+  auto refused = [&](auto&& change) {
+    json s = base;
+    change(s);
+    return test::error_of([&] { build_model<2>(s); });
+  };
+  auto e = refused([](json& s) { s["cracks"][0]["propagation"]["criterion"] = "griffith"; });
+  EXPECT_EQ(e.key_path(), "cracks[0].propagation.criterion");
+  EXPECT_NE(e.reason().find("energy_release_rate, stress_intensity, max_hoop_stress"), std::string::npos) << e.what();
+  e = refused([](json& s) { s["cracks"][0]["propagation"]["direction"] = "north"; });
+  EXPECT_EQ(e.key_path(), "cracks[0].propagation.direction");
+  EXPECT_NE(e.reason().find("max_hoop_stress"), std::string::npos) << e.what();
+  for (double bad : {0.05, 2.5}) {
+    e = refused([&](json& s) { s["cracks"][0]["propagation"]["growth_length"] = bad; });
+    EXPECT_EQ(e.key_path(), "cracks[0].propagation.growth_length") << bad;
+  }
+  e = refused([](json& s) { s["materials"][0].erase("K_Ic"); });
+  EXPECT_EQ(e.key_path(), "materials[0]");
+  EXPECT_NE(e.reason().find("missing toughness"), std::string::npos) << e.what();
+  e = refused([](json& s) { s["materials"][0]["K_Ic"] = 0; });
+  EXPECT_EQ(e.key_path(), "materials[0].K_Ic");
+  e = refused([](json& s) { s["materials"][0]["G_c"] = -1; });
+  EXPECT_EQ(e.key_path(), "materials[0].K_Ic");  // two toughnesses: the second named
+  e = refused([](json& s) {
+    s["materials"][0].erase("K_Ic");
+    s["materials"][0]["G_c"] = -1;
+  });
+  EXPECT_EQ(e.key_path(), "materials[0].G_c");
+  e = refused([](json& s) { s["cracks"][0]["propagation"]["max_speed_cR"] = 2.5; });
+  EXPECT_EQ(e.key_path(), "cracks[0].propagation.max_speed_cR");
+  e = refused([](json& s) { s["cracks"][0]["propagation"]["resistance_curve"] = {{0, 1}, {0, 2}}; });
+  EXPECT_EQ(e.key_path(), "cracks[0].propagation.resistance_curve[1]");
+  e = refused([](json& s) { s["cracks"][0]["propagation"]["speed"] = 1; });
+  EXPECT_EQ(e.key_path(), "cracks[0].propagation.speed");
+  e = refused([](json& s) { s["cracks"][0]["tips"] = "none"; });
+  EXPECT_EQ(e.key_path(), "cracks[0].propagation");
+}
+
+TEST(CrackGrowthScene, ThreeDCracksDoNotGrowYetAndSaySo) {
+  json s = test::penny_block_scene(8);
+  s["cracks"][0]["propagation"] = json::object();
+  const auto e = test::error_of([&] { build_model<3>(s); });
+  EXPECT_EQ(e.key_path(), "cracks[0].propagation");
+}
+
+}  // namespace
+}  // namespace cleave
