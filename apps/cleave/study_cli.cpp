@@ -218,7 +218,7 @@ void read_run_folder(RunRecord& r, const fs::path& dir) {
 }
 
 bool tables_hold_nan(const fs::path& dir) {
-  for (const char* f : {"global.csv", "crack_tips.csv", "crack_fronts.csv"}) {
+  for (const char* f : {"global.csv", "crack_tips.csv", "crack_fronts.csv", "crack_growth.csv"}) {
     if (!fs::exists(dir / f)) continue;
     const Table t = read_table(dir / f);
     for (const auto& row : t.rows)

@@ -86,7 +86,7 @@ double earlier_output_bytes(const fs::path& out) {
   for (const auto& e : fs::directory_iterator(out, ec)) {
     const std::string n = e.path().filename().string();
     const bool ours = e.path().extension() == ".vtu" || e.path().extension() == ".pvd" || n == "global.csv" ||
-                      n == "crack_tips.csv" || n == "crack_fronts.csv" || n == "checkpoint.bin";
+                      n == "crack_tips.csv" || n == "crack_fronts.csv" || n == "crack_growth.csv" || n == "checkpoint.bin";
     if (ours && e.is_regular_file(ec)) b += double(e.file_size(ec));
   }
   return b;
