@@ -314,6 +314,17 @@ TEST(CrackGrowthScene, RefusesBadPropagationKeysNamingThem) {
   EXPECT_EQ(e.key_path(), "cracks[0].propagation");
 }
 
+// Peridynamics grows cracks by bond breaking: a crack's propagation key is ignored, with a warning.
+TEST(CrackGrowthScene, PeridynamicsWarnsThatItIgnoresPropagation) {
+  json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/kalthoff_pd.json");
+  s["resolution"] = 4;
+  s["cracks"][1]["propagation"] = json::object();
+  const auto method = build_method<2>(s);
+  std::string all;
+  for (const auto& w : method->settings().warnings) all += w + "\n";
+  EXPECT_NE(all.find("cracks[1].propagation is ignored"), std::string::npos) << all;
+}
+
 TEST(CrackGrowthScene, ThreeDCracksDoNotGrowYetAndSaySo) {
   json s = test::penny_block_scene(8);
   s["cracks"][0]["propagation"] = json::object();

@@ -287,6 +287,13 @@ PdSystem<Dim> build_pd_system(const json& scene) {
       if (!cut) m.warnings.push_back("crack '" + c.name + "' cuts no bond (it lies outside every body)");
       m.precrack_bonds += cut;
     }
+    // An MPM scene's growing crack run here: peridynamics' cracks grow by breaking bonds at the
+    // critical stretch (from the material's fracture energy), whatever the crack's criterion says.
+    for (std::size_t i = 0; i < scene["cracks"].size(); ++i)
+      if (scene["cracks"][i].is_object() && scene["cracks"][i].contains("propagation"))
+        m.warnings.push_back("cracks[" + std::to_string(i) +
+                             "].propagation is ignored: peridynamics grows every crack by breaking bonds at the critical "
+                             "stretch of the material's fracture energy");
   }
   // Directed neighbour lists (pd_model.hpp): count, then fill in (i, j) order.
   {
