@@ -91,7 +91,7 @@ TEST(Propagation, ResistanceCurveIsLinearBetweenItsPointsAndFlatBeyond) {
 
 // The steel plate of freund.json (1 mm cells, a crack from the left edge to its centre on a node
 // line, 100 MPa stepped onto its faces) with a growing crack: K_Ic = 10 MPa sqrt(m), reached about
-// 0.6 us after the waves meet on the crack line.
+// 0.8 us after the waves meet on the crack line.
 json growing_plate(double cell_mm = 1.0, double end_us = 30.0) {
   json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/freund.json");
   s["resolution"] = cell_mm;
