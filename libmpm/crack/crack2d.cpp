@@ -211,8 +211,7 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
       throw SceneError(r.at("tips"), "unknown value \"" + c.tips + "\"; valid: auto, both, start, end, none");
     c.tip[0] = c.tips == "both" || c.tips == "start" || c.tips == "auto";
     c.tip[1] = c.tips == "both" || c.tips == "end" || c.tips == "auto";
-    for (std::size_t k = 0; k + 1 < c.points.size(); ++k)
-      c.simplices.push_back({static_cast<int32_t>(k), static_cast<int32_t>(k + 1)});
+    set_polyline_segments(c);
     c.update_extent();
     c.above = c.below = c.points;
     out.push_back(std::move(c));

@@ -125,6 +125,13 @@ using ContactLaws = NameTable<ContactLawStyle>;
 // The scene name of a contact law ("stick", "frictionless", "friction", "none").
 const char* contact_law_name(ContactLaw law);
 
+// Sets the crack's simplices to its polyline's segments (i, i + 1), after its points changed.
+inline void set_polyline_segments(Crack2D& c) {
+  c.simplices.clear();
+  for (std::size_t k = 0; k + 1 < c.points.size(); ++k)
+    c.simplices.push_back({static_cast<int32_t>(k), static_cast<int32_t>(k + 1)});
+}
+
 // Exact closed-segment intersection test (shared end points count): used by the
 // self-intersection check and exposed for tests.
 bool segments_intersect(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c, const Vec<2>& d);

@@ -8,11 +8,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The crack's vertices in order from the tip inwards.
-Vec<2> vertex_from_tip(const Crack2D& c, int end, std::size_t k) {
-  return end == 0 ? c.points[k] : c.points[c.points.size() - 1 - k];
-}
-
 Vec<2> local(const TipFrame& f, const Vec<2>& x) {
   const Vec<2> d = x - f.tip;
   return {d.dot(f.e1), d.dot(f.e2)};
@@ -40,6 +35,10 @@ double crack_angle(const Crack2D& c, int end, const TipFrame& f, double r) {
 }
 
 }  // namespace
+
+Vec<2> vertex_from_tip(const Crack2D& c, int end, std::size_t k) {
+  return end == 0 ? c.points[k] : c.points[c.points.size() - 1 - k];
+}
 
 TipFrame tip_frame(const Crack2D& c, int end) {
   TipFrame f;

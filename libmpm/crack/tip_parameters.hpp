@@ -31,6 +31,8 @@ struct TipFrame {
 };
 // end 0: the tip at points[0]; end 1: the tip at points.back().
 TipFrame tip_frame(const Crack2D& c, int end);
+// The crack's k-th vertex counted from the tip of `end` inwards.
+Vec<2> vertex_from_tip(const Crack2D& c, int end, std::size_t k);
 
 // The point on the crack at arc length `distance` behind the tip (the crack's end point when the
 // crack is shorter), with the crack's unit normal there oriented towards the "+" face.

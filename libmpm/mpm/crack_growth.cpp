@@ -7,21 +7,9 @@
 
 #include "libmpm/core/error.hpp"
 #include "libmpm/method/describe.hpp"
+#include "libmpm/mpm/material_probe.hpp"
 
 namespace cleave {
-
-double material_ahead(const Model<2>& m, const std::vector<double>& half_size, const Vec<2>& x, const Vec<2>& e,
-                      double reach, double tol) {
-  const auto& P = m.particles;
-  double edge = 0.0;
-  for (std::size_t p = 0; p < P.size(); ++p) {
-    const Vec<2> d = P.x[p] - x;
-    const double s = d.dot(e);
-    if (s <= 0.0 || s > reach || std::abs(d.x() * e.y() - d.y() * e.x()) > half_size[p] + tol) continue;
-    edge = std::max(edge, s + half_size[p]);
-  }
-  return edge;
-}
 
 namespace {
 
@@ -41,10 +29,7 @@ CrackGrowth::CrackGrowth(Model<2>& m) : m_(m) {
   for (const auto& p : m.propagation) active_ = active_ || p.has_value();
   if (!active_) return;
   state_.resize(2 * m.cracks.size());
-  half_size_.resize(m.particles.size());
-  for (const auto& b : m.bodies)
-    for (std::size_t p = b.first; p < b.first + b.count; ++p)
-      half_size_[p] = 0.5 * std::sqrt(m.particles.volume0[p] / b.thickness);
+  half_size_ = particle_half_sizes(m);
 }
 
 bool CrackGrowth::due(long step, double time) const {
@@ -107,7 +92,7 @@ bool CrackGrowth::grow(double time, long step, const std::vector<crack::TipRecor
       // Under a cell of material ahead: carried through the free edge, as the scene reader does. The
       // rows either side of a crack between particle rows sit half a spacing off its line and move
       // apart as it opens: a quarter cell of slack keeps them ahead of it.
-      const double edge = material_ahead(m_, half_size_, to, dir, 2.0 * h, 0.25 * h);
+      const double edge = material_ahead(m_, half_size_, to, dir, Vec<2>(-dir.y(), dir.x()), 2.0 * h, 0.25 * h);
       if (edge < h - 1e-9 * h) to += (edge + 0.5 * h) * dir, stop = GrowthStop::FreeEdge;
     }
     const Vec<2> lo = m_.grid.origin, hi = m_.grid.upper();
@@ -127,9 +112,7 @@ bool CrackGrowth::grow(double time, long step, const std::vector<crack::TipRecor
     } else {
       c.points.insert(c.points.begin(), to), c.above.insert(c.above.begin(), to), c.below.insert(c.below.begin(), to);
     }
-    c.simplices.clear();
-    for (std::size_t k = 0; k + 1 < c.points.size(); ++k)
-      c.simplices.push_back({static_cast<int32_t>(k), static_cast<int32_t>(k + 1)});
+    crack::set_polyline_segments(c);
     c.update_extent();
     if (stop != GrowthStop::None) c.tip[rec.end] = 0;
     st.grown += length;
@@ -175,9 +158,7 @@ void CrackGrowth::load(StateReader& r) {
   r.array(state_, "crack growth states");
   for (auto& c : m_.cracks) {
     r.array(c.tip, "crack tips");
-    c.simplices.clear();
-    for (std::size_t k = 0; k + 1 < c.points.size(); ++k)
-      c.simplices.push_back({static_cast<int32_t>(k), static_cast<int32_t>(k + 1)});
+    crack::set_polyline_segments(c);
   }
   events_.clear();
 }

@@ -80,10 +80,4 @@ class CrackGrowth {
   std::vector<double> half_size_;  // half each particle's spacing (from its area), for the ligament
 };
 
-// The material ahead of point x along unit direction e, within `reach`: the distance from x to where
-// it ends (0 when none lies ahead). A particle counts when its domain (half its spacing about it)
-// reaches the ray; tol widens that test, for rows that sit exactly half a spacing off the ray.
-double material_ahead(const Model<2>& m, const std::vector<double>& half_size, const Vec<2>& x, const Vec<2>& e,
-                      double reach, double tol);
-
 }  // namespace cleave

@@ -61,10 +61,7 @@ void check_cracks(const Model<2>& m) {
 // the scene names as a tip is left where it is, with a warning.
 void cut_through_near_edges(Model<2>& m) {
   const double h = m.grid.h;
-  const auto& P = m.particles;
-  std::vector<double> half_size(P.size());  // half the particle's spacing, from its area
-  for (const auto& b : m.bodies)
-    for (std::size_t p = b.first; p < b.first + b.count; ++p) half_size[p] = 0.5 * std::sqrt(P.volume0[p] / b.thickness);
+  const std::vector<double> half_size = particle_half_sizes(m);
   for (auto& c : m.cracks) {
     for (int end = 0; end < 2; ++end) {
       const crack::TipFrame f = crack::tip_frame(c, end);
@@ -74,16 +71,8 @@ void cut_through_near_edges(Model<2>& m) {
       // compared with a cell to 1e-9 of one: both are exact figures that rounding decided before
       // (2026-11-27: a crack on a node line ending half a cell short of the edge stayed a tip).
       const double tol = 1e-9 * h;
-      double edge = 0.0;
-      bool ahead = false;
-      for (std::size_t p = 0; p < P.size(); ++p) {
-        const Vec<2> d = P.x[p] - f.tip;
-        const double s = d.dot(f.e1);
-        if (s <= 0.0 || s > 2.0 * h || std::abs(d.dot(f.e2)) > half_size[p] + tol) continue;
-        ahead = true;
-        edge = std::max(edge, s + half_size[p]);
-      }
-      if (!ahead || edge > h - tol) continue;  // a ligament of a cell or more stays
+      const double edge = material_ahead(m, half_size, f.tip, f.e1, f.e2, 2.0 * h, tol);
+      if (edge == 0.0 || edge > h - tol) continue;  // none ahead, or a ligament of a cell or more
       const std::string where = "crack '" + c.name + "': its " + (end ? "end" : "start") + " lies " +
                                 format("%.4g m (%.3g cell)", edge, edge / h) + " from a free edge ahead of it, a ligament MPM cannot resolve";
       const bool named_tip = c.tips != "auto" && c.tip[end];

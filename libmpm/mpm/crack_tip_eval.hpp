@@ -344,11 +344,10 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       double faces = 0.0;
       {
         const std::size_t n = c.points.size();
-        const auto vertex = [&](std::size_t k) { return c.points[end == 1 ? n - 1 - k : k]; };
         const double probe = 1e-3 * h, piece = 0.25 * h;
         double along = 0.0;
         for (std::size_t k = 0; k + 1 < n && along <= 2.0 * contour_extent + h; ++k) {
-          const V a = vertex(k), b = vertex(k + 1);
+          const V a = crack::vertex_from_tip(c, end, k), b = crack::vertex_from_tip(c, end, k + 1);
           const double len = (a - b).norm();
           along += len;
           const V ahead = (a - b) / len, nrm(-ahead.y(), ahead.x());

@@ -1,5 +1,6 @@
-// The material of a 3D model as a point test, for the scene checks that need it (crack fronts
-// inside the material, crack_tips contours that leave it).
+// The material of a model as the checks on cracks see it: in 3D a point test (crack fronts inside
+// the material, crack_tips contours that leave it); in 2D how far it reaches ahead of a crack end
+// (an end near a free edge, read from the scene or grown there).
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -65,5 +66,29 @@ class MaterialProbe {
   std::vector<double> half_;
   std::vector<std::pair<int64_t, int32_t>> bins_;
 };
+
+// Half each particle's spacing (from its area and its body's thickness): its domain about its centre.
+inline std::vector<double> particle_half_sizes(const Model<2>& m) {
+  std::vector<double> half(m.particles.size());
+  for (const auto& b : m.bodies)
+    for (std::size_t p = b.first; p < b.first + b.count; ++p) half[p] = 0.5 * std::sqrt(m.particles.volume0[p] / b.thickness);
+  return half;
+}
+
+// The material ahead of x along the unit direction e1 (e2 its normal), within `reach`: the distance
+// from x to where it ends, 0 when none lies ahead. A particle counts when its domain (half_size
+// about it) reaches the ray; tol widens that test (rows exactly half a spacing off the ray).
+inline double material_ahead(const Model<2>& m, const std::vector<double>& half_size, const Vec<2>& x, const Vec<2>& e1,
+                             const Vec<2>& e2, double reach, double tol) {
+  const auto& P = m.particles;
+  double edge = 0.0;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Vec<2> d = P.x[p] - x;
+    const double s = d.dot(e1);
+    if (s <= 0.0 || s > reach || std::abs(d.dot(e2)) > half_size[p] + tol) continue;
+    edge = std::max(edge, s + half_size[p]);
+  }
+  return edge;
+}
 
 }  // namespace cleave
