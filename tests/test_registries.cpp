@@ -58,7 +58,7 @@ TEST(Registries, UnknownMethodListsTheRegisteredOnes) {
   const SceneError e = error_of([&] { cleave::build_method<2>(s); });
   EXPECT_EQ(e.key_path(), "method");
   EXPECT_EQ(e.reason(), "unknown method 'fem'; valid: " + cleave::MethodRegistry<2>::instance().names_joined());
-  EXPECT_EQ(cleave::MethodRegistry<2>::instance().names(), (std::vector<std::string>{"mpm", "peridynamics"}));
+  EXPECT_EQ(cleave::MethodRegistry<2>::instance().names(), (std::vector<std::string>{"mpm", "pem", "peridynamics"}));
 }
 
 // A second style under a taken name would replace the first silently (which one won depended on

@@ -87,6 +87,11 @@ class ObjectReader {
   std::string string_or(const char* key, const std::string& fallback) const {
     return has(key) ? string(key) : fallback;
   }
+  bool boolean_or(const char* key, bool fallback) const {
+    if (!has(key)) return fallback;
+    if (!j_[key].is_boolean()) throw SceneError(at(key), "expected true or false (got " + j_[key].dump() + ")");
+    return j_[key].get<bool>();
+  }
   template <int Dim>
   Vec<Dim> vec(const char* key, double scale = 1.0) const {
     if (!has(key)) throw SceneError(at(key), "missing");

@@ -371,7 +371,8 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
       msg << "static at t = " << method.time() << " s, step " << method.step_count() << ": " << method.relaxation_state();
       status("complete", msg.str());
     } else {
-      status("complete", "");
+      // A method that ends the run by its own criterion (PEM's equilibrium or separation) says which.
+      status("complete", method.static_reached() ? method.relaxation_state() : "");
     }
   } catch (const OutputFailure& e) {
     // Only temporaries of the failed writes go: the last complete frame and checkpoint stay, and
