@@ -11,6 +11,7 @@
 
 #include "libmpm/mpm/mpm_method.hpp"
 #include "libmpm/mpm/mpm_scene.hpp"
+#include "libmpm/method/method.hpp"
 #include "libmpm/method/run_loop.hpp"
 #include "viz/job/render_job.hpp"
 
@@ -178,6 +179,45 @@ TEST(BrazilianDisk, SimulatedDiskMatchesTheClosedForm) {
   EXPECT_GT(n, 10000u);
   EXPECT_LT(rms, 0.2);
 }
+
+// Validation 5 of the PEM issue (validation.md section 6): the same scene, brazilian_disk.json, run
+// by each method ("method" set as `--set method=...` does), rendered as dark-field fringes and
+// compared with the closed form as above: the fringe-order RMS over r < 0.6 R, and the wall time.
+class BrazilianDiskByMethod : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(BrazilianDiskByMethod, FringesMatchTheClosedFormWithinAFifthOfAFringe) {
+  const std::string method = GetParam();
+  const fs::path out = fs::path(CLEAVE_BINARY_DIR) / ("test_viz_brazilian_" + method);
+  fs::remove_all(out);
+  nlohmann::json scene = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/brazilian_disk.json");
+  scene["method"] = method;
+  RunOptions ro;
+  ro.out = out;
+  const auto summary = run_method<2>(*build_method<2>(scene), ro);
+  const auto entries = read_series(out);
+  const ParticleFrame f = read_particle_frame(entries.back().file, entries.back().time);
+  const View v = fit_view(f, 500, 500, std::nullopt, 1.0);
+  const Raster r = stress_raster(f, v);
+  const PhotoelasticSettings s = dark_field();
+  double sum = 0;
+  std::size_t n = 0;
+  for (int j = 0; j < v.height; ++j)
+    for (int i = 0; i < v.width; ++i) {
+      const double x = pixel_x(v, i), y = pixel_y(v, j);
+      const std::size_t q = std::size_t(j) * v.width + i;
+      if (x * x + y * y > 0.36 * kR * kR || !r.covered[q]) continue;
+      const Stress2 e = brazilian_disk_stress(x, y, kR, 800.0, kT);
+      const double d = fringe_order(r.values[3 * q], r.values[3 * q + 1], r.values[3 * q + 2], s) - fringe_order(e.xx, e.yy, e.xy, s);
+      sum += d * d, ++n;
+    }
+  const double rms = std::sqrt(sum / n);
+  std::printf("%s: fringe-order RMS vs closed form over r < 0.6 R (%zu pixels): %.4f; %ld steps, %.1f s wall\n",
+              method.c_str(), n, rms, summary.steps, summary.wall_s);
+  EXPECT_GT(n, 10000u);
+  EXPECT_LT(rms, 0.2);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryMethod, BrazilianDiskByMethod, ::testing::Values("peridynamics", "pem"));
 
 }  // namespace
 }  // namespace cleave::viz

@@ -114,8 +114,8 @@ static TractionLoad<Dim> resolve_traction(const Model<Dim>& m, const std::vector
 
 template <int Dim>
 Model<Dim> build_model(const json& scene) {
-  ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "resolution", "grid", "mpm", "materials",
-                               "bodies", "contact", "loads", "cracks", "crack_tips", "damping", "static", "time", "output", "checks"});
+  ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "resolution", "grid", "mpm",
+                               "peridynamics", "pem", "materials", "bodies", "contact", "loads", "cracks", "crack_tips", "damping", "static", "time", "output", "checks"});
   if (top.has("method") && top.string("method") != "mpm")  // peridynamics: libmpm/pd/pd_scene.cpp
     throw SceneError("method", "build_model reads MPM scenes only (\"method\": \"mpm\")");
   Model<Dim> m;

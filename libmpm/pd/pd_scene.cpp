@@ -53,7 +53,9 @@ double pd_memory_bytes(double points, int m) {
 
 template <int Dim>
 PdSystem<Dim> build_pd_system(const json& scene) {
-  ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "resolution", "peridynamics", "materials",
+  // The sections of the other methods ("mpm", "grid", "pem") are theirs: one scene runs under each.
+  ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "resolution", "peridynamics", "mpm",
+                               "grid", "pem", "materials",
                                "bodies", "cracks", "loads", "damping", "static", "time", "output", "checks"});
   PdSystem<Dim> m;
   const UnitSystem units = UnitSystem::from_json(scene.value("units", json()), "units");
@@ -150,7 +152,8 @@ PdSystem<Dim> build_pd_system(const json& scene) {
   for (const auto& spec : specs) {
     const ObjectReader r = spec.reader();
     if (r.has("particles_per_cell"))
-      throw SceneError(r.at("particles_per_cell"), "not used by peridynamics: the lattice spacing is \"resolution\"");
+      m.warnings.push_back(r.at("particles_per_cell") + " is ignored: it is an MPM key (peridynamics' lattice spacing "
+                                                        "is \"resolution\")");
     if (r.has("thickness"))
       throw SceneError(r.at("thickness"), "peridynamics uses analysis.thickness for every body");
     const std::string& name = spec.name;

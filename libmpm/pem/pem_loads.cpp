@@ -112,7 +112,23 @@ void resolve_loads(const nlohmann::json& scene, const UnitSystem& units, PemSyst
       for (int d = 0; d < Dim; ++d)
         if (s.mask & (1u << d)) P.v_fixed[p][d] = s.vector[d], P.v[p][d] = s.vector[d];
     }
-    if (!count) throw SceneError(s.at("region"), "no particle (mesh node) lies inside the region");
+    if (!count) {
+      // Mesh nodes sit where Gmsh puts them: a region smaller than an element (a pin at a point) takes
+      // the node nearest to its centre, when that node lies within one element size of the region.
+      const Vec<Dim> centre = 0.5 * (s.lo + s.hi);
+      std::size_t best = n;
+      for (std::size_t p = 0; p < n; ++p)
+        if ((s.body < 0 || P.region[p] == s.body) && (best == n || (P.x0[p] - centre).norm() < (P.x0[best] - centre).norm()))
+          best = p;
+      const double gap = best < n ? (P.x0[best] - P.x0[best].cwiseMax(s.lo).cwiseMin(s.hi)).norm() : INFINITY;
+      if (!(gap <= m.mesh_size))
+        throw SceneError(s.at("region"), "no particle (mesh node) lies inside the region or within one element size of it");
+      m.warnings.push_back(s.at("region") + " holds no mesh node: the condition holds the nearest, " +
+                           scene::fmt(gap) + " m outside the region");
+      P.fixed[best] |= s.mask;
+      for (int d = 0; d < Dim; ++d)
+        if (s.mask & (1u << d)) P.v_fixed[best][d] = s.vector[d], P.v[best][d] = s.vector[d];
+    }
   };
   resolvers["symmetry"] = [&](const scene::LoadSpec<Dim>& s) {
     int count = 0;

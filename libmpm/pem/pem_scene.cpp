@@ -58,7 +58,7 @@ template <int Dim>
 PemSystem<Dim> build_pem_system(const json& scene) {
   // Sections of the other methods are left to them: one scene can run under every method.
   ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "resolution", "pem", "mpm",
-                               "peridynamics", "materials", "bodies", "cracks", "loads", "damping", "static", "time",
+                               "grid", "peridynamics", "materials", "bodies", "cracks", "loads", "damping", "static", "time",
                                "output", "checks"});
   PemSystem<Dim> m;
   const UnitSystem units = UnitSystem::from_json(scene.value("units", json()), "units");
@@ -170,8 +170,11 @@ PemSystem<Dim> build_pem_system(const json& scene) {
     double nodes = 0;
     for (const auto& spec : specs) {
       const ObjectReader br = spec.reader();
-      for (const char* k : {"particles_per_cell", "thickness", "angular_velocity", "rotation_center"})
+      for (const char* k : {"thickness", "angular_velocity", "rotation_center"})
         if (br.has(k)) throw SceneError(br.at(k), "not used by pem (particles are the mesh's nodes)");
+      if (br.has("particles_per_cell"))
+        m.warnings.push_back(br.at("particles_per_cell") + " is ignored: it is an MPM key (pem's particles are the "
+                                                           "nodes of a mesh of element size \"resolution\")");
       shapes.push_back({spec.name, &(*spec.object)["shape"], spec.path + ".shape"});
       m.regions.push_back(spec.name);
       region_material.push_back(spec.material);
