@@ -68,7 +68,7 @@ scene = {
         {"type": "velocity", "region": {"min": [(L + span) / 2 - 1, -0.01], "max": [(L + span) / 2 + 1, 0.01]},
          "velocity": [None, 0]}],
     "damping": {"kinetic": 20},
-    "time": {"end": 5, "cfl": 0.8},
+    "time": {"end": 3, "cfl": 0.8},
     "output": {"interval": 0.05, "global_interval": 0.005}
 }
 json.dump(scene, open(o["--out"], "w"), indent=1)

@@ -55,6 +55,11 @@ struct PemPairs {
   std::vector<uint8_t> intact;  // 1 while the pair carries attraction
   std::vector<uint8_t> initial; // 1: intact at t = 0 (0: cut by a pre-crack), for damage
   std::vector<double> b, alpha; // plastic balance length and back force (empty: no plastic material)
+  // Pairs cut by a pre-crack: index into `cut_normal` (Dim numbers each: the crack's unit normal
+  // there, either sign), -1 for the others. Their faces touch along the crack, not along the pair:
+  // they repel only when pressed together across the crack and slide freely along it (pem_solver.cpp).
+  std::vector<int32_t> cut;
+  std::vector<double> cut_normal;
   std::size_t size() const { return partner.size(); }
 };
 

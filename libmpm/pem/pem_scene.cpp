@@ -6,6 +6,8 @@
 #include <map>
 #include <tuple>
 
+#include <Eigen/Geometry>
+
 #include "libmpm/core/json_reader.hpp"
 #include "libmpm/core/units.hpp"
 #include "libmpm/crack/surface.hpp"
@@ -42,6 +44,26 @@ double node_factor() { return Dim == 2 ? 1.16 : 1.4; }
 // The mean over crack orientations of |t . n| for a unit t (2D: 2/pi, 3D: 1/2).
 template <int Dim>
 double mean_abs_cos() { return Dim == 2 ? 2.0 / 3.14159265358979323846 : 0.5; }
+
+// The unit normal of the crack's simplex nearest to x (by centroid).
+template <int Dim>
+Vec<Dim> crack_normal_near(const crack::Surface<Dim>& c, const Vec<Dim>& x) {
+  std::size_t best = 0;
+  double dist = INFINITY;
+  for (std::size_t s = 0; s < c.simplices.size(); ++s) {
+    Vec<Dim> centre = Vec<Dim>::Zero();
+    for (int k = 0; k < Dim; ++k) centre += c.points[c.simplices[s][k]];
+    const double dd = (centre / Dim - x).squaredNorm();
+    if (dd < dist) dist = dd, best = s;
+  }
+  const auto& sx = c.simplices[best];
+  if constexpr (Dim == 2) {
+    const Vec<2> t = c.points[sx[1]] - c.points[sx[0]];
+    return Vec<2>(-t[1], t[0]).normalized();
+  } else {
+    return (c.points[sx[1]] - c.points[sx[0]]).cross(c.points[sx[2]] - c.points[sx[0]]).normalized();
+  }
+}
 
 }  // namespace
 
@@ -309,11 +331,15 @@ PemSystem<Dim> build_pem_system(const json& scene) {
   // Pairs with no stiffness (an obtuse element's long side may fit to 0) still repel and break as
   // contact; they are kept: crack tracing and damage count them.
   std::vector<uint8_t> cut(pi.size(), 0);
+  std::vector<Vec<Dim>> normal(pi.size(), Vec<Dim>::Zero());
   if (top.has("cracks")) {
     for (const auto& c : crack::read_surfaces<Dim>(scene["cracks"], "cracks", L, {m.mesh_size, false})) {
       std::size_t count = 0;
       for (std::size_t q = 0; q < pi.size(); ++q)
-        if (!cut[q] && crack::segment_crosses<Dim>(c, P.x0[pi[q]], P.x0[pj[q]])) cut[q] = 1, ++count;
+        if (!cut[q] && crack::segment_crosses<Dim>(c, P.x0[pi[q]], P.x0[pj[q]])) {
+          cut[q] = 1, ++count;
+          normal[q] = crack_normal_near<Dim>(c, 0.5 * (P.x0[pi[q]] + P.x0[pj[q]]));
+        }
       if (!count) m.warnings.push_back("crack '" + c.name + "' cuts no pair (it lies outside every body)");
       m.precrack_pairs += count;
     }
@@ -332,11 +358,19 @@ PemSystem<Dim> build_pem_system(const json& scene) {
     const auto entries = static_cast<std::size_t>(N.offset[n]);
     N.partner.resize(entries), N.l0.resize(entries), N.k.resize(entries), N.law.resize(entries);
     N.intact.resize(entries), N.initial.resize(entries);
+    N.cut.assign(entries, -1);
+    std::vector<int32_t> cut_index(pi.size(), -1);
+    for (std::size_t q = 0; q < pi.size(); ++q)
+      if (cut[q]) {
+        cut_index[q] = static_cast<int32_t>(N.cut_normal.size() / Dim);
+        for (int d = 0; d < Dim; ++d) N.cut_normal.push_back(normal[q][d]);
+      }
     std::vector<int64_t> fill(N.offset.begin(), N.offset.end() - 1);
     auto put = [&](int32_t p, int32_t q, std::size_t s) {
       const auto e = static_cast<std::size_t>(fill[p]++);
       N.partner[e] = q, N.l0[e] = pl0[s], N.k[e] = pk[s], N.law[e] = plaw[s];
       N.intact[e] = N.initial[e] = cut[s] ? 0 : 1;
+      N.cut[e] = cut_index[s];
     };
     for (std::size_t s = 0; s < pi.size(); ++s) put(pj[s], pi[s], s);  // partners below, increasing
     for (std::size_t s = 0; s < pi.size(); ++s) put(pi[s], pj[s], s);  // partners above, increasing

@@ -69,6 +69,25 @@ std::size_t PemSolver<Dim>::forces(double dt) {
       if (intact) {
         if (plastic_ && law.plastic()) f = plastic_force(k, l0, r, law, N.b[e], N.alpha[e], b_next_[e], alpha_next_[e]);
         else f = elastic_force(k, l0, r - l0, law);
+      } else if (N.cut[e] >= 0) {
+        // A pair cut by a pre-crack: the crack's faces touch across the crack normal n. They repel
+        // with the pair's stiffness when pressed together (gap change g < 0 along n) and carry
+        // Coulomb friction along the crack; sliding alone stretches or shortens the pair freely.
+        Vec<Dim> nrm;
+        for (int c = 0; c < Dim; ++c) nrm[c] = N.cut_normal[Dim * N.cut[e] + c];
+        const Vec<Dim> d0 = P.x0[j] - P.x0[i];
+        if (nrm.dot(d0) < 0) nrm = -nrm;
+        const double g = (d - d0).dot(nrm);
+        if (g < 0.0) {
+          F += (k * g) * nrm;
+          const Vec<Dim> vrel = P.v[j] - P.v[i];
+          const Vec<Dim> vt = vrel - vrel.dot(nrm) * nrm;
+          const double s = vt.norm();
+          if (s > 0.0 && mu > 0.0) {
+            const double mred = P.mass[i] * P.mass[j] / (P.mass[i] + P.mass[j]);
+            F += (std::min(mu * k * -g, mred * s / dt) / s) * vt;
+          }
+        }
       } else if (r < l0) {
         // A broken pair closer than its balance distance repels, and carries Coulomb friction across
         // the line of the pair (seed 004 §2.4), capped so that it cannot reverse the relative sliding
@@ -97,6 +116,22 @@ std::size_t PemSolver<Dim>::forces(double dt) {
   return static_cast<std::size_t>(total / 2);
 }
 
+
+template <int Dim>
+Vec<Dim> PemSolver<Dim>::cut_direction(std::size_t i, int64_t e) const {
+  const auto& N = m_.pairs;
+  Vec<Dim> nrm;
+  for (int c = 0; c < Dim; ++c) nrm[c] = N.cut_normal[Dim * N.cut[e] + c];
+  const Vec<Dim> d0 = m_.points.x0[N.partner[e]] - m_.points.x0[i];
+  return nrm.dot(d0) < 0 ? Vec<Dim>(-nrm) : nrm;
+}
+
+template <int Dim>
+double PemSolver<Dim>::cut_gap(std::size_t i, int64_t e) const {
+  const std::size_t j = m_.pairs.partner[e];
+  const Vec<Dim> d = y_[j] - y_[i], d0 = m_.points.x0[j] - m_.points.x0[i];
+  return (d - d0).dot(cut_direction(i, e));
+}
 
 template <int Dim>
 void PemSolver<Dim>::commit() {
@@ -186,6 +221,9 @@ PemGlobal<Dim> PemSolver<Dim>::global_state() const {
       if (N.intact[e]) {
         if (plastic_ && law.plastic()) s += 0.5 * k * (r - N.b[e]) * (r - N.b[e]);
         else s += elastic_energy(k, l0, r - l0, law);
+      } else if (N.cut[e] >= 0) {
+        const double g = cut_gap(i, e);
+        if (g < 0.0) s += 0.5 * k * g * g;
       } else if (r < l0) {
         s += 0.5 * k * (r - l0) * (r - l0);
       }
@@ -242,6 +280,12 @@ std::vector<Sym<Dim>> PemSolver<Dim>::stress() const {
       if (!(r > 0.0)) continue;
       const PairLaw& law = m_.materials[N.law[e]].law;
       double f = 0.0;
+      if (N.cut[e] >= 0 && !N.intact[e]) {
+        // Contact across a pre-crack: the force k g n, along the crack normal.
+        const double g = cut_gap(i, e);
+        if (g < 0.0) S += (k * g) * cut_direction(i, e) * d.transpose();
+        continue;
+      }
       if (N.intact[e]) f = plastic_ && law.plastic() ? k * (r - N.b[e]) : elastic_force(k, l0, r - l0, law);
       else if (r < l0) f = k * (r - l0);
       S += (f / r) * d * d.transpose();

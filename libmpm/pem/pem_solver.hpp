@@ -53,7 +53,11 @@ class PemSolver {
   // Accelerations a_next and the next pair state from the current positions and half-step
   // velocities; returns the pairs (each counted once) that broke.
   std::size_t forces(double dt);
-  void commit();  // the next state (accelerations, internal forces, pairs) becomes the current one
+  void commit();
+  // A pre-cracked pair's crack normal, oriented from particle i towards its partner, and the change
+  // of their separation along it (< 0: pressed together).
+  Vec<Dim> cut_direction(std::size_t i, int64_t e) const;
+  double cut_gap(std::size_t i, int64_t e) const;  // the next state (accelerations, internal forces, pairs) becomes the current one
   Vec<Dim> kicked(std::size_t p, double h) const;
   double load_power(double h) const;  // power of the loads and reactions at v + h a
 
