@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "libmpm/core/part_costs.hpp"
-#include "libmpm/io/particle_fields.hpp"
+#include "libmpm/io/point_set_builder.hpp"
 #include "libmpm/method/describe.hpp"
 #include "libmpm/method/relaxation.hpp"
 #include "libmpm/method/tip_table.hpp"
@@ -27,38 +27,20 @@ namespace cleave::pd {
 template <int Dim>
 io::PointSet pd_point_set(const PdSystem<Dim>& m, const PdSolver<Dim>& s) {
   const auto& P = m.points;
-  const auto& fields = m.output.fields;
-  const std::size_t n = P.size();
-  io::PointSet ps;
-  ps.points.assign(3 * n, 0.0);
   // Current positions, as for MPM particles (the renderer draws the deformed body).
-  for (std::size_t p = 0; p < n; ++p)
-    for (int d = 0; d < Dim; ++d) ps.points[3 * p + d] = P.x0[p][d] + P.u[p][d];
-  auto add = [&](const char* name, int comps, auto&& fill) {
-    if (!fields.count(name)) return;
-    io::PointArray a{name, comps, std::vector<double>(comps * n, 0.0)};
-    for (std::size_t p = 0; p < n; ++p) fill(p, &a.values[comps * p]);
-    ps.arrays.push_back(std::move(a));
-  };
+  io::PointSetBuilder<Dim> b(m.output.fields, P.size(), [&](std::size_t p) { return Vec<Dim>(P.x0[p] + P.u[p]); });
   std::vector<Sym<Dim>> sig;
-  if (fields.count("stress") || fields.count("von_mises") || fields.count("principal_stress_difference"))
-    sig = s.stress();
+  if (b.wants_stress()) sig = s.stress();
   std::vector<double> phi;
-  if (fields.count("damage")) phi = s.damage();
-  auto vtk6 = [](const Sym<Dim>& t, double* o) {
-    for (int k = 0; k < kSymComponents<Dim>; ++k) o[k] = t[k];  // 2D: xx yy zz xy, then 0 0
-  };
-  add("displacement", 3, [&](std::size_t p, double* o) { for (int d = 0; d < Dim; ++d) o[d] = P.u[p][d]; });
-  add("velocity", 3, [&](std::size_t p, double* o) { for (int d = 0; d < Dim; ++d) o[d] = P.v[p][d]; });
-  add("damage", 1, [&](std::size_t p, double* o) { o[0] = phi[p]; });
-  add("stress", 6, [&](std::size_t p, double* o) { vtk6(sig[p], o); });
-  add("material", 1, [&](std::size_t p, double* o) { o[0] = P.material[p]; });
-  add("volume", 1, [&](std::size_t p, double* o) { o[0] = P.volume[p]; });
-  add("size", 1, [&](std::size_t p, double* o) { o[0] = m.dx; });  // each point's lattice cell
-  add("von_mises", 1, [&](std::size_t p, double* o) { o[0] = io::von_mises<Dim>(sig[p]); });
-  add("principal_stress_difference", 1,
-      [&](std::size_t p, double* o) { o[0] = io::principal_stress_difference<Dim>(sig[p]); });
-  return ps;
+  if (b.wants("damage")) phi = s.damage();
+  b.add_vectors("displacement", P.u);
+  b.add_vectors("velocity", P.v);
+  b.add_scalars("damage", [&](std::size_t p) { return phi[p]; });
+  b.add_scalars("material", [&](std::size_t p) { return double(P.material[p]); });
+  b.add_scalars("volume", [&](std::size_t p) { return P.volume[p]; });
+  b.add_scalars("size", [&](std::size_t) { return m.dx; });  // each point's lattice cell
+  b.add_stress([&](std::size_t p) { return sig[p]; });
+  return b.take();
 }
 
 template io::PointSet pd_point_set<2>(const PdSystem<2>&, const PdSolver<2>&);

@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "libmpm/core/part_costs.hpp"
-#include "libmpm/io/particle_fields.hpp"
+#include "libmpm/io/point_set_builder.hpp"
 #include "libmpm/method/describe.hpp"
 #include "libmpm/method/method.hpp"
 #include "libmpm/method/relaxation.hpp"
@@ -214,35 +214,20 @@ class PemMethod final : public Method<Dim> {
 
   io::PointSet particles() const {
     const auto& P = m_.points;
-    const auto& fields = m_.output.fields;
-    const std::size_t n = P.x0.size();
-    io::PointSet ps;
-    ps.points.assign(3 * n, 0.0);
     const auto& y = solver_.positions();
-    for (std::size_t p = 0; p < n; ++p)
-      for (int d = 0; d < Dim; ++d) ps.points[3 * p + d] = y[p][d];
-    auto add = [&](const char* name, int comps, auto&& fill) {
-      if (!fields.count(name)) return;
-      io::PointArray a{name, comps, std::vector<double>(comps * n, 0.0)};
-      for (std::size_t p = 0; p < n; ++p) fill(p, &a.values[comps * p]);
-      ps.arrays.push_back(std::move(a));
-    };
+    io::PointSetBuilder<Dim> b(m_.output.fields, P.x0.size(), [&](std::size_t p) { return y[p]; });
     std::vector<Sym<Dim>> sig;
-    if (fields.count("stress") || fields.count("von_mises") || fields.count("principal_stress_difference"))
-      sig = solver_.stress();
+    if (b.wants_stress()) sig = solver_.stress();
     std::vector<double> phi;
-    if (fields.count("damage")) phi = solver_.damage();
-    add("displacement", 3, [&](std::size_t p, double* o) { for (int d = 0; d < Dim; ++d) o[d] = P.u[p][d]; });
-    add("velocity", 3, [&](std::size_t p, double* o) { for (int d = 0; d < Dim; ++d) o[d] = P.v[p][d]; });
-    add("damage", 1, [&](std::size_t p, double* o) { o[0] = phi[p]; });
-    add("stress", 6, [&](std::size_t p, double* o) { for (int k = 0; k < kSymComponents<Dim>; ++k) o[k] = sig[p][k]; });
-    add("material", 1, [&](std::size_t p, double* o) { o[0] = P.material[p]; });
-    add("volume", 1, [&](std::size_t p, double* o) { o[0] = P.volume[p]; });
-    add("size", 1, [&](std::size_t p, double* o) { o[0] = P.size[p]; });
-    add("von_mises", 1, [&](std::size_t p, double* o) { o[0] = io::von_mises<Dim>(sig[p]); });
-    add("principal_stress_difference", 1,
-        [&](std::size_t p, double* o) { o[0] = io::principal_stress_difference<Dim>(sig[p]); });
-    return ps;
+    if (b.wants("damage")) phi = solver_.damage();
+    b.add_vectors("displacement", P.u);
+    b.add_vectors("velocity", P.v);
+    b.add_scalars("damage", [&](std::size_t p) { return phi[p]; });
+    b.add_scalars("material", [&](std::size_t p) { return double(P.material[p]); });
+    b.add_scalars("volume", [&](std::size_t p) { return P.volume[p]; });
+    b.add_scalars("size", [&](std::size_t p) { return P.size[p]; });
+    b.add_stress([&](std::size_t p) { return sig[p]; });
+    return b.take();
   }
 
   PemSystem<Dim> m_;

@@ -80,7 +80,7 @@ template <int Dim>
 PemSystem<Dim> build_pem_system(const json& scene) {
   // Sections of the other methods are left to them: one scene can run under every method.
   ObjectReader top(scene, "", {"title", "description", "units", "method", "analysis", "resolution", "pem", "mpm",
-                               "grid", "peridynamics", "materials", "bodies", "cracks", "loads", "damping", "static", "time",
+                               "peridynamics", "materials", "bodies", "cracks", "loads", "damping", "static", "time",
                                "output", "checks"});
   PemSystem<Dim> m;
   const UnitSystem units = UnitSystem::from_json(scene.value("units", json()), "units");
