@@ -344,6 +344,63 @@ TEST(PemSceneErrors, BadInputIsRefusedNamingTheKeyAndTheReason) {
             std::string::npos) << m.warnings.back();
 }
 
+// A mesh drawn elsewhere: a Gmsh .msh file whose physical groups are the bodies, each mapped to a
+// material by pem.regions; loads name the groups. Two unit squares of two materials (2 x 2 triangles).
+TEST(PemMeshFile, PhysicalGroupsBecomeBodiesWithTheirMaterials) {
+  const auto dir = std::filesystem::path(CLEAVE_BINARY_DIR) / "test_out" / "pem_mesh_file";
+  std::filesystem::create_directories(dir);
+  const auto file = dir / "two_squares.msh";
+  std::ofstream(file) << R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+2
+2 1 "left"
+2 2 "right"
+$EndPhysicalNames
+$Nodes
+6
+1 0 0 0
+2 1 0 0
+3 2 0 0
+4 0 1 0
+5 1 1 0
+6 2 1 0
+$EndNodes
+$Elements
+4
+1 2 2 1 1 1 2 5
+2 2 2 1 1 1 5 4
+3 2 2 2 2 2 3 6
+4 2 2 2 2 2 6 5
+$EndElements
+)";
+  json s = json::parse(R"({"method": "pem", "analysis": {"type": "plane_stress", "thickness": 0.1},
+    "materials": [{"name": "soft", "type": "linear_elastic", "E": 1e9, "density": 1000},
+                  {"name": "hard", "type": "linear_elastic", "E": 4e9, "density": 3000}],
+    "loads": [{"type": "traction", "body": "right", "face": "+x", "traction": [1e6, 0]},
+              {"type": "velocity", "region": {"min": [-0.1, -0.1], "max": [0.1, 1.1]}, "velocity": [0, 0]}],
+    "time": {"end": 1e-3}})");
+  s["pem"] = {{"mesh_file", file.string()}, {"regions", {{"left", "soft"}, {"right", "hard"}}}};
+  const PemSystem<2> m = build_pem_system<2>(s);
+  EXPECT_EQ(m.regions, (std::vector<std::string>{"left", "right"}));
+  ASSERT_EQ(m.points.x0.size(), 6u);
+  EXPECT_EQ(m.pair_count, 9u);  // 4 triangles share 3 inner edges: 12 - 3
+  // Masses: each node takes a third of each of its triangles' masses (0.5 m^2 x 0.1 m each).
+  double mass = 0;
+  for (double v : m.points.mass) mass += v;
+  EXPECT_NEAR(mass, 1000 * 0.1 + 3000 * 0.1, 1e-9);
+  // The traction on the right group's +x face: 1e6 Pa x 1 m x 0.1 m on the two nodes at x = 2.
+  ASSERT_EQ(m.loads.size(), 1u);
+  double fx = 0;
+  for (const auto& f : m.loads[0].force) fx += f.x();
+  EXPECT_NEAR(fx, 1e5, 1e-6);
+  s["pem"]["regions"] = {{"left", "soft"}, {"middle", "hard"}};
+  EXPECT_EQ(refusal(s).rfind("pem.regions.middle: no region of that name in", 0), 0u) << refusal(s);
+  s["pem"]["regions"] = {{"left", "soft"}};
+  EXPECT_EQ(refusal(s).rfind("pem.regions: region 'right' of", 0), 0u) << refusal(s);
+}
+
 // 1 and 2 threads, and a run stopped at a frame and resumed, give the same files bit for bit (the
 // cracked disc at 1 mm, 9 339 particles: above the parallel threshold, through the start of cracking).
 TEST(PemDeterminism, ThreadCountAndResumeGiveTheSameFilesBitForBit) {
