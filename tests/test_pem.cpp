@@ -336,6 +336,18 @@ TEST(PemPlastic, APlatePulledInTensionFlowsAtTheYieldStress) {
   EXPECT_LT(s2, 1.03 * 200e6);
 }
 
+// Seed 004 §3 step 4: a step that would break more pairs than pem.break_limit allows is redone as
+// two half steps (down to max_halvings); with a limit of one pair per step the cracking disc halves
+// steps, and ends at the same time as an unhalved run.
+TEST(PemSolver, AStepBreakingTooManyPairsIsRedoneInHalves) {
+  json s = scene_file("pem_brazilian_cracked.json");
+  s["time"]["end"] = 0.6;
+  s["pem"]["break_limit"] = 1e-6;  // at least one pair: two in one step halve it
+  auto m = run_to_end(s);
+  EXPECT_GT(m->run_info()["halved_steps"].get<long>(), 0);
+  EXPECT_NEAR(m->time(), 0.6e-3, m->settings().dt);  // the step that passes time.end is whole
+}
+
 // Bad input: exit 2 material, with the key and the reason.
 std::string refusal(const json& s) {
   try {
