@@ -34,11 +34,9 @@ struct PemParticles {
   std::vector<int32_t> material;  // material of its first element
   std::vector<uint8_t> fixed;     // bit d: velocity component d prescribed
   std::vector<Vec<Dim>> v_fixed;
-  std::vector<Vec<Dim>> f_ext;    // external force (N) at full load, per load ramp group below
-  std::size_t size_count() const { return x0.size(); }
   void resize(std::size_t n) {
     x0.resize(n), u.resize(n), v.resize(n), a.resize(n), volume.resize(n), mass.resize(n), size.resize(n);
-    region.resize(n), material.resize(n), fixed.resize(n), v_fixed.resize(n), f_ext.resize(n);
+    region.resize(n), material.resize(n), fixed.resize(n), v_fixed.resize(n);
   }
 };
 

@@ -228,7 +228,7 @@ PemSystem<Dim> build_pem_system(const json& scene) {
   }
   for (std::size_t p = 0; p < n; ++p) {
     P.x0[p] = mesh.nodes[p];
-    P.u[p].setZero(), P.a[p].setZero(), P.f_ext[p].setZero(), P.v_fixed[p].setZero();
+    P.u[p].setZero(), P.a[p].setZero(), P.v_fixed[p].setZero();
     P.volume[p] = P.mass[p] = 0.0;
     P.region[p] = P.material[p] = -1;
     P.fixed[p] = 0;
