@@ -48,6 +48,7 @@ struct PemPairs {
   std::vector<int64_t> offset;
   std::vector<int32_t> partner;
   std::vector<double> l0;       // reference length (m)
+  std::vector<double> xi;       // reference vector x0[partner] - x0[owner], Dim numbers per entry (m)
   std::vector<double> k;        // stiffness (N/m), the sum of its elements' calibrated shares
   std::vector<int32_t> law;     // index into the model's materials: the weakest of its elements
   std::vector<uint8_t> intact;  // 1 while the pair carries attraction

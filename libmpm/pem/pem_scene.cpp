@@ -357,6 +357,7 @@ PemSystem<Dim> build_pem_system(const json& scene) {
     for (std::size_t p = 0; p < n; ++p) N.offset[p + 1] += N.offset[p];
     const auto entries = static_cast<std::size_t>(N.offset[n]);
     N.partner.resize(entries), N.l0.resize(entries), N.k.resize(entries), N.law.resize(entries);
+    N.xi.resize(Dim * entries);
     N.intact.resize(entries), N.initial.resize(entries);
     N.cut.assign(entries, -1);
     std::vector<int32_t> cut_index(pi.size(), -1);
@@ -369,6 +370,7 @@ PemSystem<Dim> build_pem_system(const json& scene) {
     auto put = [&](int32_t p, int32_t q, std::size_t s) {
       const auto e = static_cast<std::size_t>(fill[p]++);
       N.partner[e] = q, N.l0[e] = pl0[s], N.k[e] = pk[s], N.law[e] = plaw[s];
+      for (int d = 0; d < Dim; ++d) N.xi[Dim * e + d] = P.x0[q][d] - P.x0[p][d];
       N.intact[e] = N.initial[e] = cut[s] ? 0 : 1;
       N.cut[e] = cut_index[s];
     };

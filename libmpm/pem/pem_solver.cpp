@@ -50,12 +50,12 @@ std::size_t PemSolver<Dim>::forces(double dt) {
   const auto& mats = m_.materials;
 #pragma omp parallel for schedule(static) if (parallel_)
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec<Dim> yi = y_[i];
+    const Vec<Dim> ui = P.u[i];
     Vec<Dim> F = Vec<Dim>::Zero();
     int64_t broke = 0;
     for (int64_t e = N.offset[i]; e < N.offset[i + 1]; ++e) {
       const auto j = static_cast<std::size_t>(N.partner[e]);
-      const Vec<Dim> d = y_[j] - yi;
+      const Vec<Dim> d = separation(e, ui, j);
       const double r = d.norm();
       if (!(r > 0.0)) {
         intact_next_[e] = N.intact[e];
@@ -129,7 +129,7 @@ Vec<Dim> PemSolver<Dim>::cut_direction(std::size_t i, int64_t e) const {
 template <int Dim>
 double PemSolver<Dim>::cut_gap(std::size_t i, int64_t e) const {
   const std::size_t j = m_.pairs.partner[e];
-  const Vec<Dim> d = y_[j] - y_[i], d0 = m_.points.x0[j] - m_.points.x0[i];
+  const Vec<Dim> d = separation(e, m_.points.u[i], j), d0 = m_.points.x0[j] - m_.points.x0[i];
   return (d - d0).dot(cut_direction(i, e));
 }
 
@@ -216,7 +216,7 @@ PemGlobal<Dim> PemSolver<Dim>::global_state() const {
   g.strain = 0.5 * deterministic_sum(n, [&](std::size_t i) {
     double s = 0.0;
     for (int64_t e = N.offset[i]; e < N.offset[i + 1]; ++e) {
-      const double r = (y_[N.partner[e]] - y_[i]).norm(), l0 = N.l0[e], k = N.k[e];
+      const double r = separation(e, P.u[i], N.partner[e]).norm(), l0 = N.l0[e], k = N.k[e];
       const PairLaw& law = m_.materials[N.law[e]].law;
       if (N.intact[e]) {
         if (plastic_ && law.plastic()) s += 0.5 * k * (r - N.b[e]) * (r - N.b[e]);
@@ -275,7 +275,7 @@ std::vector<Sym<Dim>> PemSolver<Dim>::stress() const {
   for (std::size_t i = 0; i < n; ++i) {
     Mat<Dim> S = Mat<Dim>::Zero();
     for (int64_t e = N.offset[i]; e < N.offset[i + 1]; ++e) {
-      const Vec<Dim> d = y_[N.partner[e]] - y_[i];
+      const Vec<Dim> d = separation(e, P.u[i], N.partner[e]);
       const double r = d.norm(), l0 = N.l0[e], k = N.k[e];
       if (!(r > 0.0)) continue;
       const PairLaw& law = m_.materials[N.law[e]].law;
