@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "libmpm/core/parallel.hpp"
+#include "libmpm/method/prescribed_motion.hpp"
 
 namespace cleave::pd {
 
@@ -120,12 +121,7 @@ void PdSolver<Dim>::step() {
 
 template <int Dim>
 Vec<Dim> PdSolver<Dim>::kicked(std::size_t p, double h) const {
-  const auto& P = m_.points;
-  Vec<Dim> v = P.v[p] + h * P.a[p];
-  if (P.fixed[p])
-    for (int d = 0; d < Dim; ++d)
-      if (P.fixed[p] & (1u << d)) v[d] = P.v_fixed[p][d];
-  return v;
+  return kicked_velocity<Dim>(m_.points, p, h);
 }
 
 template <int Dim>
@@ -133,10 +129,7 @@ double PdSolver<Dim>::load_power(double h) const {
   const auto& P = m_.points;
   double w = 0.0;
   for (int32_t p : loaded_) w += fext_[p].dot(P.v[p] + h * P.a[p]);
-  for (int32_t p : fixed_)
-    for (int d = 0; d < Dim; ++d)
-      if (P.fixed[p] & (1u << d)) w -= (fint_[p][d] + fext_[p][d]) * P.v_fixed[p][d];
-  return w;
+  return add_reaction_power<Dim>(w, P, fixed_, fint_, fext_);
 }
 
 template <int Dim>

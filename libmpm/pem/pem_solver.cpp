@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "libmpm/core/parallel.hpp"
+#include "libmpm/method/prescribed_motion.hpp"
 
 namespace cleave::pem {
 
@@ -145,23 +146,14 @@ void PemSolver<Dim>::commit() {
 
 template <int Dim>
 Vec<Dim> PemSolver<Dim>::kicked(std::size_t p, double h) const {
-  const auto& P = m_.points;
-  Vec<Dim> v = P.v[p] + h * P.a[p];
-  if (P.fixed[p])
-    for (int d = 0; d < Dim; ++d)
-      if (P.fixed[p] & (1u << d)) v[d] = P.v_fixed[p][d];
-  return v;
+  return kicked_velocity<Dim>(m_.points, p, h);
 }
 
 template <int Dim>
 double PemSolver<Dim>::load_power(double h) const {
-  const auto& P = m_.points;
   double w = 0.0;
   for (int32_t p : loaded_) w += fext_[p].dot(kicked(p, h));
-  for (int32_t p : fixed_)
-    for (int d = 0; d < Dim; ++d)
-      if (P.fixed[p] & (1u << d)) w -= (fint_[p][d] + fext_[p][d]) * P.v_fixed[p][d];
-  return w;
+  return add_reaction_power<Dim>(w, m_.points, fixed_, fint_, fext_);
 }
 
 template <int Dim>
