@@ -146,6 +146,28 @@ TEST(BrazilianDisk, DigitisedPointsRms) {
   EXPECT_GT(rms_shift, 0.3);
 }
 
+// The dark-field fringe order of the last particle frame in `out` against the closed form of the disk
+// under 800 N, per pixel of a 500 x 500 raster over r < 0.6 R: the RMS, and the pixels counted (n).
+double last_frame_fringe_rms(const fs::path& out, std::size_t& n) {
+  const auto entries = read_series(out);
+  const ParticleFrame f = read_particle_frame(entries.back().file, entries.back().time);
+  const View v = fit_view(f, 500, 500, std::nullopt, 1.0);
+  const Raster r = stress_raster(f, v);
+  const PhotoelasticSettings s = dark_field();
+  double sum = 0;
+  n = 0;
+  for (int j = 0; j < v.height; ++j)
+    for (int i = 0; i < v.width; ++i) {
+      const double x = pixel_x(v, i), y = pixel_y(v, j);
+      const std::size_t q = std::size_t(j) * v.width + i;
+      if (x * x + y * y > 0.36 * kR * kR || !r.covered[q]) continue;
+      const Stress2 e = brazilian_disk_stress(x, y, kR, 800.0, kT);
+      const double d = fringe_order(r.values[3 * q], r.values[3 * q + 1], r.values[3 * q + 2], s) - fringe_order(e.xx, e.yy, e.xy, s);
+      sum += d * d, ++n;
+    }
+  return std::sqrt(sum / n);
+}
+
 // Validation 2: a damped MPM disk in diametral compression (data/scenes/brazilian_disk.json: 800 N,
 // 0.5 mm cells), per-pixel fringe order against the closed form within r < 0.6 R.
 TEST(BrazilianDisk, SimulatedDiskMatchesTheClosedForm) {
@@ -156,25 +178,8 @@ TEST(BrazilianDisk, SimulatedDiskMatchesTheClosedForm) {
   RunOptions ro;
   ro.out = out;
   run_model<2>(m, ro);
-  const auto entries = read_series(out);
-  const auto& last = entries.back();
-  const ParticleFrame f = read_particle_frame(last.file, last.time);
-  const View v = fit_view(f, 500, 500, std::nullopt, 1.0);
-  const Raster r = stress_raster(f, v);
-  const PhotoelasticSettings s = dark_field();
-  const double P = 800.0;
-  double sum = 0;
   std::size_t n = 0;
-  for (int j = 0; j < v.height; ++j)
-    for (int i = 0; i < v.width; ++i) {
-      const double x = pixel_x(v, i), y = pixel_y(v, j);
-      const std::size_t q = std::size_t(j) * v.width + i;
-      if (x * x + y * y > 0.36 * kR * kR || !r.covered[q]) continue;
-      const Stress2 e = brazilian_disk_stress(x, y, kR, P, kT);
-      const double d = fringe_order(r.values[3 * q], r.values[3 * q + 1], r.values[3 * q + 2], s) - fringe_order(e.xx, e.yy, e.xy, s);
-      sum += d * d, ++n;
-    }
-  const double rms = std::sqrt(sum / n);
+  const double rms = last_frame_fringe_rms(out, n);
   std::printf("simulated disk: fringe-order RMS vs closed form over r < 0.6 R (%zu pixels): %.4f\n", n, rms);
   EXPECT_GT(n, 10000u);
   EXPECT_LT(rms, 0.2);
@@ -194,23 +199,8 @@ TEST_P(BrazilianDiskByMethod, FringesMatchTheClosedFormWithinAFifthOfAFringe) {
   RunOptions ro;
   ro.out = out;
   const auto summary = run_method<2>(*build_method<2>(scene), ro);
-  const auto entries = read_series(out);
-  const ParticleFrame f = read_particle_frame(entries.back().file, entries.back().time);
-  const View v = fit_view(f, 500, 500, std::nullopt, 1.0);
-  const Raster r = stress_raster(f, v);
-  const PhotoelasticSettings s = dark_field();
-  double sum = 0;
   std::size_t n = 0;
-  for (int j = 0; j < v.height; ++j)
-    for (int i = 0; i < v.width; ++i) {
-      const double x = pixel_x(v, i), y = pixel_y(v, j);
-      const std::size_t q = std::size_t(j) * v.width + i;
-      if (x * x + y * y > 0.36 * kR * kR || !r.covered[q]) continue;
-      const Stress2 e = brazilian_disk_stress(x, y, kR, 800.0, kT);
-      const double d = fringe_order(r.values[3 * q], r.values[3 * q + 1], r.values[3 * q + 2], s) - fringe_order(e.xx, e.yy, e.xy, s);
-      sum += d * d, ++n;
-    }
-  const double rms = std::sqrt(sum / n);
+  const double rms = last_frame_fringe_rms(out, n);
   std::printf("%s: fringe-order RMS vs closed form over r < 0.6 R (%zu pixels): %.4f; %ld steps, %.1f s wall\n",
               method.c_str(), n, rms, summary.steps, summary.wall_s);
   EXPECT_GT(n, 10000u);
