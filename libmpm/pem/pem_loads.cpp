@@ -43,7 +43,10 @@ std::vector<Facet<Dim>> boundary_facets(const Mesh<Dim>& m) {
       std::array<int32_t, 4> key;
       key.fill(-1);
       for (int k = 0; k < f.count; ++k) key[k] = f.nodes[k] = en[lf[k]];
-      std::sort(key.begin(), key.begin() + f.count);
+      // Insertion sort of the first f.count (2 to 4) nodes: std::sort on a variable prefix of the
+      // array drew GCC 12's -Warray-bounds false positive.
+      for (int a = 1; a < f.count; ++a)
+        for (int b = a; b > 0 && key[b - 1] > key[b]; --b) std::swap(key[b - 1], key[b]);
       for (int k = 0; k < f.count; ++k) f.centroid += m.nodes[f.nodes[k]];
       f.centroid /= f.count;
       if constexpr (Dim == 2) {
@@ -83,7 +86,6 @@ void resolve_loads(const nlohmann::json& scene, const UnitSystem& units, PemSyst
     PemLoad<Dim> ld;
     ld.name = s.name;
     ld.rise_time = s.rise_time;
-    std::map<int32_t, Vec<Dim>> share;  // node -> force per unit traction component... as weights
     std::map<int32_t, double> weight;   // node -> projected area (m^2)
     double total = 0.0;
     for (const auto& f : facets) {

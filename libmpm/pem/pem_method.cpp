@@ -214,7 +214,7 @@ class PemMethod final : public Method<Dim> {
 
   io::PointSet particles() const {
     const auto& P = m_.points;
-    const auto& y = solver_.positions();
+    const auto y = solver_.positions();
     io::PointSetBuilder<Dim> b(m_.output.fields, P.x0.size(), [&](std::size_t p) { return y[p]; });
     std::vector<Sym<Dim>> sig;
     if (b.wants_stress()) sig = solver_.stress();

@@ -140,6 +140,7 @@ PemSystem<Dim> build_pem_system(const json& scene) {
 
   // --- the mesh: Gmsh from the bodies, or a file ---------------------------------------------------
   std::vector<int> region_material;  // region -> material
+  std::vector<Vec<Dim>> region_velocity;  // region -> initial velocity (a body's "velocity"; mesh files: 0)
   if (r.has("mesh_file")) {
     if (top.has("bodies"))
       throw SceneError(r.at("mesh_file"), "give bodies (meshed by Gmsh) or pem.mesh_file, not both: a mesh file's "
@@ -204,11 +205,7 @@ PemSystem<Dim> build_pem_system(const json& scene) {
     }
     scene::check_memory(pem_memory_bytes<Dim>(nodes), m.size_key, scene::fmt(nodes) + " particles");
     m.mesh = mesh_bodies<Dim>(shapes, L, opt, m.size_key, std::size_t(std::min(2e9, 4.0 * nodes + 1e5)));
-    // Initial velocities of the bodies, applied below once the particles exist.
-    m.points.resize(m.mesh.nodes.size());
-    for (auto& v : m.points.v) v.setZero();
-    for (std::size_t e = 0; e < m.mesh.element_count(); ++e)
-      for (int k = 0; k < m.mesh.nodes_of(e); ++k) m.points.v[m.mesh.element(e)[k]] = specs[m.mesh.element_region[e]].velocity;
+    for (const auto& spec : specs) region_velocity.push_back(spec.velocity);
   }
   const auto& mesh = m.mesh;
   const std::size_t n = mesh.nodes.size(), ne = mesh.element_count();
@@ -217,18 +214,12 @@ PemSystem<Dim> build_pem_system(const json& scene) {
   for (std::size_t e = 0; e < ne; ++e) m.element_material[e] = region_material[mesh.element_region[e]];
 
   // --- particles: volume and mass as equal shares of their elements (docs/pem.md) ----------------
+  region_velocity.resize(m.regions.size(), Vec<Dim>::Zero());
   auto& P = m.points;
-  if (P.v.size() != n) {
-    P.resize(n);
-    for (auto& v : P.v) v.setZero();
-  } else {
-    const auto v = P.v;
-    P.resize(n);
-    P.v = v;
-  }
+  P.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
     P.x0[p] = mesh.nodes[p];
-    P.u[p].setZero(), P.a[p].setZero(), P.v_fixed[p].setZero();
+    P.u[p].setZero(), P.v[p].setZero(), P.a[p].setZero(), P.v_fixed[p].setZero();
     P.volume[p] = P.mass[p] = 0.0;
     P.region[p] = P.material[p] = -1;
     P.fixed[p] = 0;
@@ -243,6 +234,7 @@ PemSystem<Dim> build_pem_system(const json& scene) {
     const double rho = m.materials[m.element_material[e]].density;
     for (int a = 0; a < k; ++a) {
       const int32_t p = mesh.element(e)[a];
+      P.v[p] = region_velocity[mesh.element_region[e]];  // a node shared by bodies: the last one's
       P.volume[p] += measure[e] / k;
       P.mass[p] += rho * measure[e] / k;
       if (P.region[p] < 0) P.region[p] = mesh.element_region[e], P.material[p] = m.element_material[e];

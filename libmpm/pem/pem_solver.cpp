@@ -14,7 +14,7 @@ PemSolver<Dim>::PemSolver(PemSystem<Dim>& m) : m_(m) {
   const std::size_t n = P.x0.size();
   parallel_ = worth_parallel(n);
   plastic_ = !m_.pairs.b.empty();
-  y_.resize(n), a_next_.resize(n), fint_.assign(n, Vec<Dim>::Zero()), fint_next_.assign(n, Vec<Dim>::Zero()), fext_.assign(n, Vec<Dim>::Zero());
+  a_next_.resize(n), fint_.assign(n, Vec<Dim>::Zero()), fint_next_.assign(n, Vec<Dim>::Zero()), fext_.assign(n, Vec<Dim>::Zero());
   breaks_.assign(n, 0);
   intact_next_ = m_.pairs.intact;
   if (plastic_) b_next_ = m_.pairs.b, alpha_next_ = m_.pairs.alpha;
@@ -24,7 +24,6 @@ PemSolver<Dim>::PemSolver(PemSystem<Dim>& m) : m_(m) {
   for (std::size_t p = 0; p < n; ++p) {
     if (loaded[p]) loaded_.push_back(static_cast<int32_t>(p));
     if (P.fixed[p]) fixed_.push_back(static_cast<int32_t>(p));
-    y_[p] = P.x0[p] + P.u[p];
   }
   set_loads(0.0);
   forces(m_.dt);
@@ -76,11 +75,8 @@ std::size_t PemSolver<Dim>::forces(double dt) {
         // A pair cut by a pre-crack: the crack's faces touch across the crack normal n. They repel
         // with the pair's stiffness when pressed together (gap change g < 0 along n) and carry
         // Coulomb friction along the crack; sliding alone stretches or shortens the pair freely.
-        Vec<Dim> nrm;
-        for (int c = 0; c < Dim; ++c) nrm[c] = N.cut_normal[Dim * N.cut[e] + c];
-        const Vec<Dim> d0 = P.x0[j] - P.x0[i];
-        if (nrm.dot(d0) < 0) nrm = -nrm;
-        const double g = (d - d0).dot(nrm);
+        const Vec<Dim> nrm = cut_direction(i, e);
+        const double g = cut_gap(i, e);
         if (g < 0.0) {
           F += (k * g) * nrm;
           const Vec<Dim> vrel = P.v[j] - P.v[i];
@@ -174,7 +170,6 @@ void PemSolver<Dim>::advance(double dt, int depth) {
   for (std::size_t p = 0; p < n; ++p) {
     P.v[p] = kicked(p, h);
     P.u[p] += dt * P.v[p];
-    y_[p] = P.x0[p] + P.u[p];
   }
   set_loads(time_ + dt);
   const std::size_t broke = forces(dt);
@@ -182,7 +177,6 @@ void PemSolver<Dim>::advance(double dt, int depth) {
   if (may_halve && double(broke) > limit) {
     // Too many pairs break in one step (seed 004, step 4): the step is redone in two halves.
     P.u = u_save_, P.v = v_save_;
-    for (std::size_t p = 0; p < n; ++p) y_[p] = P.x0[p] + P.u[p];
     set_loads(time_);
     ++halved_;
     advance(h, depth + 1);
@@ -197,6 +191,14 @@ void PemSolver<Dim>::advance(double dt, int depth) {
   work_ += 0.5 * dt * (power_old + load_power(0.0));
 #pragma omp parallel for schedule(static) if (parallel_)
   for (std::size_t p = 0; p < n; ++p) P.v[p] = kicked(p, h);
+}
+
+template <int Dim>
+std::vector<Vec<Dim>> PemSolver<Dim>::positions() const {
+  const auto& P = m_.points;
+  std::vector<Vec<Dim>> y(P.x0.size());
+  for (std::size_t p = 0; p < y.size(); ++p) y[p] = P.x0[p] + P.u[p];
+  return y;
 }
 
 template <int Dim>
@@ -311,7 +313,6 @@ void PemSolver<Dim>::load(StateReader& r) {
   r.array(P.u, "particles"), r.array(P.v, "particles"), r.array(P.a, "particles"), r.array(fint_, "particles");
   r.array(m_.pairs.intact, "pairs");
   if (plastic_) r.array(m_.pairs.b, "pairs"), r.array(m_.pairs.alpha, "pairs");
-  for (std::size_t p = 0; p < P.x0.size(); ++p) y_[p] = P.x0[p] + P.u[p];
   set_loads(time_);
 }
 

@@ -41,8 +41,8 @@ class PemSolver {
   // Stress from the pair forces: sigma_i = 1/(2 V_i) sum_j F_ij (x) d_ij, symmetrised; zz from the
   // analysis (plane stress 0, plane strain nu (xx + yy) with the network's nu = 1/4).
   std::vector<Sym<Dim>> stress() const;
-  // Current positions.
-  const std::vector<Vec<Dim>>& positions() const { return y_; }
+  // Current positions x0 + u, for the frames (the step works with reference vectors and displacements).
+  std::vector<Vec<Dim>> positions() const;
 
   void save(StateWriter& w) const;
   void load(StateReader& r);
@@ -72,7 +72,7 @@ class PemSolver {
   double load_power(double h) const;  // power of the loads and reactions at v + h a
 
   PemSystem<Dim>& m_;
-  std::vector<Vec<Dim>> y_, a_next_, fint_, fint_next_, fext_, u_save_, v_save_;
+  std::vector<Vec<Dim>> a_next_, fint_, fint_next_, fext_, u_save_, v_save_;
   std::vector<uint8_t> intact_next_;
   std::vector<double> b_next_, alpha_next_;
   std::vector<int64_t> breaks_;  // per particle, this step
