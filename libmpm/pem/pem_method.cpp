@@ -101,10 +101,10 @@ class PemMethod final : public Method<Dim> {
       m_.damping = relax_->check(g.time, g.strain, g.kinetic, m_.points);
     }
     if (m_.equilibrium.enabled && s % m_.equilibrium.interval == 0) {
-      const auto g = solver_.global_state();
+      const auto g = solver_.balance();
       last_speed_ = g.max_speed, last_residual_ = g.relative_residual;
       if (g.max_speed < m_.equilibrium.velocity && g.relative_residual < m_.equilibrium.residual) {
-        if (++calm_ >= m_.equilibrium.checks && end_ == End::None) end_ = End::Equilibrium, end_time_ = g.time;
+        if (++calm_ >= m_.equilibrium.checks && end_ == End::None) end_ = End::Equilibrium, end_time_ = solver_.time();
       } else {
         calm_ = 0;
       }

@@ -202,6 +202,26 @@ std::vector<Vec<Dim>> PemSolver<Dim>::positions() const {
 }
 
 template <int Dim>
+typename PemSolver<Dim>::Balance PemSolver<Dim>::balance() const {
+  const auto& P = m_.points;
+  double r2 = 0, e2 = 0, i2 = 0, vmax = 0;
+  for (std::size_t p = 0; p < P.x0.size(); ++p) {
+    for (int d = 0; d < Dim; ++d) {
+      if (P.fixed[p] & (1u << d)) continue;
+      const double res = fint_[p][d] + fext_[p][d];
+      r2 += res * res, e2 += fext_[p][d] * fext_[p][d], i2 += fint_[p][d] * fint_[p][d];
+    }
+    vmax = std::max(vmax, P.v[p].norm());
+  }
+  Balance b;
+  b.residual = std::sqrt(r2);
+  const double ref = std::sqrt(std::max(e2, i2));
+  b.relative_residual = ref > 0 ? b.residual / ref : 0.0;
+  b.max_speed = vmax;
+  return b;
+}
+
+template <int Dim>
 PemGlobal<Dim> PemSolver<Dim>::global_state() const {
   const auto& P = m_.points;
   const auto& N = m_.pairs;
@@ -229,19 +249,8 @@ PemGlobal<Dim> PemSolver<Dim>::global_state() const {
   std::size_t broken = 0;
   for (uint8_t b : N.intact) broken += b ? 0 : 1;
   g.broken = broken / 2;
-  double r2 = 0, e2 = 0, i2 = 0, vmax = 0;
-  for (std::size_t p = 0; p < n; ++p) {
-    for (int d = 0; d < Dim; ++d) {
-      if (P.fixed[p] & (1u << d)) continue;
-      const double res = fint_[p][d] + fext_[p][d];
-      r2 += res * res, e2 += fext_[p][d] * fext_[p][d], i2 += fint_[p][d] * fint_[p][d];
-    }
-    vmax = std::max(vmax, P.v[p].norm());
-  }
-  g.residual = std::sqrt(r2);
-  const double ref = std::sqrt(std::max(e2, i2));
-  g.relative_residual = ref > 0 ? g.residual / ref : 0.0;
-  g.max_speed = vmax;
+  const Balance b = balance();
+  g.residual = b.residual, g.relative_residual = b.relative_residual, g.max_speed = b.max_speed;
   for (int d = 0; d < Dim; ++d) g.momentum[d] = deterministic_sum(n, [&](std::size_t p) { return P.mass[p] * P.v[p][d]; });
   return g;
 }

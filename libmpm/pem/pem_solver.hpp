@@ -36,6 +36,12 @@ class PemSolver {
   long step_count() const { return step_; }
   long halved_steps() const { return halved_; }
   PemGlobal<Dim> global_state() const;
+  // What the equilibrium stop needs, without global_state's sums over every pair: the residual force
+  // over the free components (N, 2-norm), it relative to max(|F_ext|, |F_int|), the largest speed.
+  struct Balance {
+    double residual = 0.0, relative_residual = 0.0, max_speed = 0.0;
+  };
+  Balance balance() const;
   // Broken pairs / all pairs of each particle (pre-cracks count as broken; seed 004 eq. 4).
   std::vector<double> damage() const;
   // Stress from the pair forces: sigma_i = 1/(2 V_i) sum_j F_ij (x) d_ij, symmetrised; zz from the
