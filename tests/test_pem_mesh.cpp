@@ -331,14 +331,14 @@ TEST(PemMesh, MeshingLeavesTheProcessAsItWas) {
   omp_set_num_threads(threads);
 }
 
-TEST(PemMesh, OneDiskOfTwentyMillimetresAtHalfAMillimetreMeshesInAboutASecond) {
+// The time is printed, not asserted (no test asserts wall time: a loaded machine must not fail CI).
+TEST(PemMesh, TheBrazilianDisksMeshAtHalfAMillimetreHasItsArea) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto m = mesh_of<2>({{"d", json::parse(R"({"type": "disk", "center": [0, 0], "radius": 20})")}}, 0.0005,
                             false, false, 1e-3);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("disk r = 20 mm at 0.5 mm: %zu nodes, %zu elements, %.3f s\n", m.nodes.size(), m.element_count(), s);
   EXPECT_NEAR(total_measure(m), kPi * 4e-4, 0.001 * kPi * 4e-4);
-  EXPECT_LT(s, 20.0);
 }
 
 // --- mesh files ----------------------------------------------------------------------------------
