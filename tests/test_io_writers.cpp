@@ -634,3 +634,21 @@ TEST(CsvSeries, NegativeZeroIsWrittenAsZero) {
   }
   EXPECT_EQ(slurp(csv), "time_s,momentum_x_kg_m_per_s,x_m\n0,0,0\n9.9999999999999995e-07,0,-4.9406564584124654e-324\n");
 }
+
+// The run loop syncs every series before a checkpoint (a power cut must not lose rows the
+// checkpoint resumes after); a sync that cannot be done names the file.
+TEST(CsvSeries, SyncKeepsTheRowsAndNamesTheFileWhenItFails) {
+  const fs::path csv = test_dir() / "synced.csv";
+  CsvSeries s(csv, {"time_s", "x_m"}, false);
+  s.row({0.0, 1.0});
+  EXPECT_NO_THROW(s.sync());
+  EXPECT_EQ(slurp(csv), "time_s,x_m\n0,1\n");
+  fs::remove(csv);  // the series' file is gone from under it: the sync cannot open it
+  try {
+    s.sync();
+    FAIL() << "expected std::runtime_error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(csv.string()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("No such file"), std::string::npos) << e.what();
+  }
+}

@@ -192,6 +192,16 @@ TEST(SceneErrors, ASetNumberBeyondADoubleIsRefusedNamingTheKey) {
   EXPECT_TRUE(has(e.reason(), "out of range")) << e.reason();
 }
 
+// `materials.0.E` reads naturally but JSON arrays have no named keys: the error shows the index form.
+TEST(SceneErrors, ASetThatNamesAnArrayElementWithADotShowsTheIndexForm) {
+  json s = block();
+  const SceneError e = error_of([&] { cleave::apply_override(s, "materials.0.E=1e9"); });
+  EXPECT_EQ(e.key_path(), "materials.0");
+  EXPECT_TRUE(has(e.reason(), "materials[0]")) << e.reason();
+  EXPECT_NO_THROW(cleave::apply_override(s, "materials[0].E=1e9"));
+  EXPECT_EQ(s["materials"][0]["E"], 1e9);
+}
+
 // --- what the machine has ----------------------------------------------------------------------------
 
 TEST(SceneErrors, ASceneNeedingMoreMemoryThanTheMachineHasIsRefusedBeforeAllocating) {

@@ -3,11 +3,14 @@
 #include "libmpm/io/csv_writer.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <iterator>
 #include <sstream>
 #include <stdexcept>
 
+#include "libmpm/io/file_sync.hpp"
 #include "libmpm/io/vtu_writer.hpp"
 
 namespace cleave::io {
@@ -101,6 +104,13 @@ void CsvSeries::row(const std::vector<double>& values) {
   out_.write(line.data(), static_cast<std::streamsize>(line.size()));
   out_.flush();
   if (!out_) throw std::runtime_error("cannot write " + file_.string());
+}
+
+void CsvSeries::sync() {
+  out_.flush();
+  if (!out_) throw std::runtime_error("cannot write " + file_.string());
+  if (const int err = sync_file(file_))
+    throw std::runtime_error("cannot sync " + file_.string() + ": " + std::strerror(err));
 }
 
 void CsvSeries::truncate_after(const std::filesystem::path& file, double time) {

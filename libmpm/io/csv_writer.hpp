@@ -28,6 +28,12 @@ class CsvSeries {
   // A missing file is left missing.
   static void truncate_after(const std::filesystem::path& file, double time);
 
+  // Forces the rows written so far to the disk (fsync). The run loop calls it before each
+  // checkpoint: a row is flushed to the kernel at once, but only a sync makes it survive a power
+  // cut, and a resumed run keeps the rows up to its checkpoint rather than recomputing them.
+  // Throws std::runtime_error naming the file and the cause when the sync fails.
+  void sync();
+
   const std::filesystem::path& path() const { return file_; }
 
  private:

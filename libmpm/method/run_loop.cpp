@@ -234,7 +234,12 @@ RunSummary run_method(Method<Dim>& method, const RunOptions& opt) {
     };
     auto checkpoint = [&]() {
       ck.scene_hash = opt.scene_hash;
-      output([&] { write_checkpoint<Dim>(ck_path, method, ck); });
+      output([&] {
+        // The series' rows up to this step reach the disk before the checkpoint that resumes after them.
+        for (auto* series_csv : {&csv, &tip_csv, &event_csv})
+          if (*series_csv) (*series_csv)->sync();
+        write_checkpoint<Dim>(ck_path, method, ck);
+      });
       ck_step = method.step_count();
       ck_time = method.time();
     };

@@ -108,6 +108,10 @@ void apply_override(json& scene, const std::string& kv) {
       const auto end = key.find_first_of(".[", i);
       const std::string name = key.substr(i, end == std::string::npos ? std::string::npos : end - i);
       if (name.empty()) throw SceneError(key, "empty key name in --set");
+      if (node->is_array())
+        throw SceneError(key.substr(0, end == std::string::npos ? key.size() : end),
+                         "is an array: index it as " + key.substr(0, i > 0 && key[i - 1] == '.' ? i - 1 : i) + "[" +
+                             (name.find_first_not_of("0123456789") == std::string::npos ? name : "0") + "]");
       if (!node->is_null() && !node->is_object()) throw SceneError(key, "cannot set a key inside a non-object");
       parent = node, last_name = name;
       node = &(*node)[name];
