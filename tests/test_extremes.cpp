@@ -130,6 +130,21 @@ TEST_F(Extremes, EnergyMadeByTheNumericsIsReportedAndAPlateThatKeepsItsEnergyIsN
   EXPECT_LT(nlohmann::json::parse(read_text(dir_ / "kept" / "run.json"))["energy_gain"].get<double>(), 0.01);
 }
 
+// Two cracks meeting end to end are named before the run (their junction's contact makes energy,
+// the test above); the same kinked crack as one polyline is not.
+TEST_F(Extremes, CracksMeetingEndToEndAreNamedAndOnePolylineIsNot) {
+  const std::string plate = "'" + kStudies + "/extremes/cracked_plate.json'";
+  const Result two = cleave("check " + plate + " --set 'cracks=[{\"name\": \"a\", \"points\": [[-6, 0], [0, 0]]}, "
+                            "{\"name\": \"b\", \"points\": [[0, 0], [3, 6]]}]'");
+  EXPECT_EQ(two.code, 0) << two.err;
+  EXPECT_NE(two.err.find("cracks 'a' and 'b': the end of one and the start of the other lie 0 cell apart"),
+            std::string::npos) << two.err;
+  EXPECT_NE(two.err.find("write a kinked crack as one polyline"), std::string::npos) << two.err;
+  const Result one = cleave("check " + plate + " --set 'cracks=[{\"name\": \"a\", \"points\": [[-6, 0], [0, 0], [3, 6]]}]'");
+  EXPECT_EQ(one.code, 0) << one.err;
+  EXPECT_EQ(one.err.find("polyline"), std::string::npos) << one.err;
+}
+
 TEST_F(Extremes, PeridynamicsAtTheFullStableStepFromRestIsNoBlowUp) {
   const Result r = cleave("run '" + kStudies + "/extremes/pd_plate.json' --out pd --quiet --set time.cfl=1 --set time.end=2");
   EXPECT_EQ(r.code, 0) << r.err;
