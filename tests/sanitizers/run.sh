@@ -11,4 +11,4 @@ here=$(cd "$(dirname "$0")" && pwd)
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
 LSAN_OPTIONS="suppressions=$here/lsan.supp:print_suppressions=0" \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  exec ctest --test-dir "$build" --output-on-failure --timeout 3600 "$@"
+  exec ctest --test-dir "$build" --output-on-failure "$@"
