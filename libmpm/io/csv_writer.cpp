@@ -3,7 +3,6 @@
 #include "libmpm/io/csv_writer.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cstring>
 #include <iterator>
