@@ -281,6 +281,31 @@ TEST(PemBrazilianCracked, CracksStartAtTheTipsAndRunToTheLoadingPointsUntilTheDi
   EXPECT_LT(bottom, 0.2 * R);
 }
 
+// Validation 3's initiation angle (validation.md §6): the maximum hoop stress criterion with MPM's
+// K_II/K_I on the same geometry puts the kink at 67.7 degrees from the crack line, towards the load;
+// the issue asks for 10 degrees. With tip growth (the scene's) both tips start there on the shipped
+// 1 mm triangles and on 1.5 mm triangles and 1 mm quadrangles (the pair rule read -3 to +85 degrees
+// over such meshes), and the disc separates.
+TEST(PemBrazilianCracked, BothTipsKinkWithin10DegreesOfTheMaximumHoopStressAngleOnEveryMesh) {
+  for (const char* mesh : {"shipped", "1.5 mm", "quadrangles"}) {
+    SCOPED_TRACE(mesh);
+    json s = scene_file("pem_brazilian_cracked.json");
+    if (std::string(mesh) == "1.5 mm") s["resolution"] = 1.5;
+    if (std::string(mesh) == "quadrangles") s["pem"]["elements"] = "quadrangles";
+    auto m = run_to_end(s);
+    const json info = m->run_info();
+    EXPECT_EQ(info["end"], "separated");
+    ASSERT_EQ(info["tips"].size(), 2u);
+    for (const auto& tip : info["tips"]) {
+      ASSERT_FALSE(tip["kink_deg"].is_null());
+      std::printf("%s: tip kinks %.1f deg (K_I %.3g, K_II %.3g Pa sqrt(m) when it started)\n", mesh,
+                  tip["kink_deg"].get<double>(), tip["K_I_at_start_Pa_sqrt_m"].get<double>(),
+                  tip["K_II_at_start_Pa_sqrt_m"].get<double>());
+      EXPECT_NEAR(tip["kink_deg"].get<double>(), 67.7, 10.0);
+    }
+  }
+}
+
 // Seed 004 §4.3 (validation.md §6): the concrete beam's cracks run through the interface phase: most
 // pairs broken during the run are interface pairs (the interface holds 17 % of the pairs).
 TEST(PemConcreteBeam, MostBrokenPairsLieInTheInterfacePhase) {
@@ -341,6 +366,7 @@ TEST(PemPlastic, APlatePulledInTensionFlowsAtTheYieldStress) {
 // steps, and ends at the same time as an unhalved run.
 TEST(PemSolver, AStepBreakingTooManyPairsIsRedoneInHalves) {
   json s = scene_file("pem_brazilian_cracked.json");
+  s["pem"].erase("tip_growth");  // seed 004's pair rule: pairs break on their own stretch
   s["time"]["end"] = 0.6;
   s["pem"]["break_limit"] = 1e-6;  // at least one pair: two in one step halve it
   auto m = run_to_end(s);
@@ -393,6 +419,33 @@ TEST(PemSceneErrors, BadInputIsRefusedNamingTheKeyAndTheReason) {
   ASSERT_FALSE(m.warnings.empty());
   EXPECT_NE(m.warnings.back().find("materials[0].nu = 0.2 cannot be met: a central-force pair network gives nu = 0.333"),
             std::string::npos) << m.warnings.back();
+}
+
+// pem.tip_growth's keys and what it needs (the cracked disc at 3 mm elements, to build quickly).
+TEST(PemSceneErrors, TipGrowthIsRefusedWhereItCannotWorkNamingTheKey) {
+  json base = scene_file("pem_brazilian_cracked.json");
+  base["resolution"] = 3.0;
+  EXPECT_EQ(build_pem_system<2>(base).tips.size(), 2u);
+  json s = base;
+  s["pem"]["tip_growth"]["radius"] = 5;  // mm: under 2 mesh sizes
+  EXPECT_EQ(refusal(s).rfind("pem.tip_growth.radius: at least 2 mesh sizes", 0), 0u) << refusal(s);
+  s = base;
+  s["pem"]["tip_growth"]["length"] = 20;
+  EXPECT_EQ(refusal(s), "pem.tip_growth.length: between 0.25 and 4 mesh sizes");
+  s = base;
+  s["pem"]["tip_growth"]["speed"] = 1;
+  EXPECT_EQ(refusal(s).rfind("pem.tip_growth.speed: unknown key; valid keys: radius, length, max_speed", 0), 0u)
+      << refusal(s);
+  s = base;
+  s.erase("cracks");
+  EXPECT_EQ(refusal(s), "pem.tip_growth: the scene declares no cracks to grow");
+  s = base;
+  s["materials"][0].erase("fracture_energy");
+  EXPECT_EQ(refusal(s), "pem.tip_growth: the material 'rock' at a tip of crack 'centre' gives no fracture_energy: "
+                        "the tips grow when K reaches sqrt(E' G_c)");
+  s = base;
+  s["cracks"][0]["points"] = {{60, 0}, {70, 0}};  // outside the disc
+  EXPECT_EQ(refusal(s), "pem.tip_growth: no crack has a tip inside the bodies");
 }
 
 // A mesh drawn elsewhere: a Gmsh .msh file whose physical groups are the bodies, each mapped to a
@@ -453,41 +506,53 @@ $EndElements
 }
 
 // 1 and 2 threads, and a run stopped at a frame and resumed, give the same files bit for bit (the
-// cracked disc at 1 mm, 9 339 particles: above the parallel threshold, through the start of cracking).
+// cracked disc at 1 mm, 9 339 particles: above the parallel threshold, through the start of cracking),
+// with the tips growing (the scene's pem.tip_growth; the run split after both tips grew) and with
+// seed 004's pair rule (tip growth off: pairs break on their own stretch, from about 0.5 ms).
 TEST(PemDeterminism, ThreadCountAndResumeGiveTheSameFilesBitForBit) {
-  const auto base = std::filesystem::path(CLEAVE_BINARY_DIR) / "test_out" / "pem_determinism";
-  std::filesystem::remove_all(base);
-  auto read = [](const std::filesystem::path& f) {
-    std::ifstream in(f, std::ios::binary);
-    std::stringstream b;
-    b << in.rdbuf();
-    return b.str();
-  };
-  json s = scene_file("pem_brazilian_cracked.json");
-  s["time"]["end"] = 0.6;  // ms: cracks start growing at about 0.5 ms
-  s["output"]["interval"] = 0.1;
-  auto run = [&](const json& scene, const std::string& dir, bool resume, int threads) {
-    const int was = omp_get_max_threads();
-    omp_set_num_threads(threads);
-    RunOptions opt;
-    opt.out = base / dir;
-    opt.resume = resume;
-    run_method<2>(*build_method<2>(scene), opt);
-    omp_set_num_threads(was);
-  };
-  run(s, "two", false, 2);
-  json first = s;
-  first["time"]["end"] = 0.3;
-  run(first, "split", false, 2);
-  run(s, "split", true, 2);
-  run(s, "one", false, 1);
-  const std::string whole = read(base / "two" / "global.csv");
-  EXPECT_GT(std::count(whole.begin(), whole.end(), '\n'), 100);
-  EXPECT_EQ(read(base / "one" / "global.csv"), whole);
-  EXPECT_EQ(read(base / "split" / "global.csv"), whole);
-  for (const char* f : {"particles_000006.vtu", "cracks_000006.vtu"}) {
-    EXPECT_EQ(read(base / "one" / f), read(base / "two" / f)) << f;
-    EXPECT_EQ(read(base / "split" / f), read(base / "two" / f)) << f;
+  for (const bool tips : {true, false}) {
+    SCOPED_TRACE(tips ? "tip growth" : "pair rule");
+    const auto base = std::filesystem::path(CLEAVE_BINARY_DIR) / "test_out" / (tips ? "pem_determinism_tips" : "pem_determinism");
+    std::filesystem::remove_all(base);
+    auto read = [](const std::filesystem::path& f) {
+      std::ifstream in(f, std::ios::binary);
+      std::stringstream b;
+      b << in.rdbuf();
+      return b.str();
+    };
+    json s = scene_file("pem_brazilian_cracked.json");
+    if (!tips) s["pem"].erase("tip_growth");
+    s["time"]["end"] = tips ? 0.5 : 0.6;  // ms
+    s["output"]["interval"] = 0.1;
+    auto run = [&](const json& scene, const std::string& dir, bool resume, int threads) {
+      const int was = omp_get_max_threads();
+      omp_set_num_threads(threads);
+      RunOptions opt;
+      opt.out = base / dir;
+      opt.resume = resume;
+      run_method<2>(*build_method<2>(scene), opt);
+      omp_set_num_threads(was);
+    };
+    run(s, "two", false, 2);
+    json first = s;
+    first["time"]["end"] = tips ? 0.4 : 0.3;
+    run(first, "split", false, 2);
+    run(s, "split", true, 2);
+    run(s, "one", false, 1);
+    const std::string whole = read(base / "two" / "global.csv");
+    EXPECT_GT(std::count(whole.begin(), whole.end(), '\n'), 100);
+    EXPECT_EQ(read(base / "one" / "global.csv"), whole);
+    EXPECT_EQ(read(base / "split" / "global.csv"), whole);
+    const std::string last = tips ? "000005" : "000006";
+    for (const std::string& f : {"particles_" + last + ".vtu", "cracks_" + last + ".vtu"}) {
+      EXPECT_EQ(read(base / "one" / f), read(base / "two" / f)) << f;
+      EXPECT_EQ(read(base / "split" / f), read(base / "two" / f)) << f;
+    }
+    if (tips) {  // both tips grew before the split and after it
+      const json info = json::parse(read(base / "split" / "run.json"));
+      for (const auto& tip : info["tips"]) EXPECT_LT(tip["started_s"].get<double>(), 0.4e-3);
+      EXPECT_EQ(info["tips"], json::parse(read(base / "two" / "run.json"))["tips"]);
+    }
   }
 }
 

@@ -41,8 +41,12 @@ void read_common_keys(const ObjectReader& r, const PemMaterialContext& c, PemMat
   }
 }
 
-void set_pair_law(PemMaterial& m, double S, const std::string& path) {
+void set_pair_law(PemMaterial& m, double S, const std::string& path, bool breakable) {
   PairLaw& law = m.law;
+  if (!breakable) {  // the tips decide where cracks run (pem.tip_growth): no cutoff, plasticity kept
+    if (m.yield_stress > 0) law.eps_yield = m.yield_stress / m.E, law.hardening = m.hardening;
+    return;
+  }
   if (m.fracture_energy > 0 && !(S > 0))
     throw SceneError(path, "no pair of this material: its fracture energy cannot set a cutoff");
   if (m.yield_stress > 0) {

@@ -31,7 +31,8 @@ void read_common_keys(const ObjectReader& r, const PemMaterialContext& c, PemMat
 // S = (1/V) sum_p k_p l_p^3 <|t_p . n|> over the material's pairs (J/m^2 at unit stretch; the mean over
 // crack orientations n): breaking every pair that crosses a unit area costs G = eps_peak eps_cut S / 2.
 // `path` names the material for errors (a cutoff below the peak, or at or below the balance distance).
-void set_pair_law(PemMaterial& m, double fracture_sum, const std::string& path);
+// breakable = false (pem.tip_growth: the tips decide where cracks run): no peak or cutoff, only yield.
+void set_pair_law(PemMaterial& m, double fracture_sum, const std::string& path, bool breakable = true);
 
 }  // namespace cleave::pem
 

@@ -19,6 +19,7 @@
 #include "libmpm/pem/crack_trace.hpp"
 #include "libmpm/pem/pem_scene.hpp"
 #include "libmpm/pem/pem_solver.hpp"
+#include "libmpm/pem/tip_growth.hpp"
 
 namespace cleave::pem {
 namespace {
@@ -50,6 +51,7 @@ class PemMethod final : public Method<Dim> {
   explicit PemMethod(const nlohmann::json& scene)
       : m_(build_pem_system<Dim>(scene)), solver_(m_), tracer_(m_) {
     if (m_.static_tolerance > 0) relax_.emplace(m_.static_tolerance);
+    if (m_.tip_growth.enabled) grower_.emplace(m_);
     for (const auto& mat : m_.materials) breakable_ = breakable_ || std::isfinite(mat.law.eps_cut);
     breakable_ = breakable_ || m_.precrack_pairs > 0;
     least_ = std::max<std::size_t>(2, std::size_t(m_.fragment_fraction * double(m_.points.x0.size())));
@@ -70,7 +72,8 @@ class PemMethod final : public Method<Dim> {
         format("mesh: mean pair length %.6g m; friction %.3g on closed broken pairs", m.mesh_size, m.friction)};
     for (const auto& mat : m.materials) {
       const auto& l = mat.law;
-      std::string breaks = !std::isfinite(l.eps_cut) ? "pairs never break"
+      std::string breaks = m.tip_growth.enabled      ? "pairs are cut only where a tip grows (pem.tip_growth)"
+                           : !std::isfinite(l.eps_cut) ? "pairs never break"
                            : l.plastic()              ? format("yield stretch %.4g, cutoff stretch %.4g", l.eps_yield, l.eps_cut)
                            : l.eps_cut > l.eps_peak  ? format("peak stretch %.4g, cutoff stretch %.4g", l.eps_peak, l.eps_cut)
                                                      : format("brittle, cutoff stretch %.4g", l.eps_cut);
@@ -81,6 +84,16 @@ class PemMethod final : public Method<Dim> {
                          "than %.3g of the pairs is halved (up to %d times)",
                          m.dt, m.stable_dt, static_cast<long>(std::ceil(m.end_time / m.dt - 1e-9)), m.end_time,
                          m.break_limit, m.max_halvings));
+    if (m.tip_growth.enabled) {
+      const auto& g = m.tip_growth;
+      out.push_back(format("tip growth: %zu tips; pairs do not break on their own; K_I, K_II from the faces' jumps "
+                           "fitted out to %.6g m behind a tip; where K_eq reaches K_Ic a tip advances %.6g m at the "
+                           "maximum hoop stress angle, at most %.6g m/s",
+                           m.tips.size(), g.radius, g.length, g.max_speed));
+      for (const auto& t : m.tips)
+        out.push_back(format("  tip of '%s' at %s: K_Ic %.6g Pa sqrt(m) ('%s')", t.crack.c_str(),
+                             position_text<Dim>(t.start).c_str(), t.toughness, t.material.c_str()));
+    }
     if (m.equilibrium.enabled)
       out.push_back(format("equilibrium: ends when the largest speed < %.3g m/s and the relative residual < %.3g for "
                            "%d checks in a row (every %d steps)",
@@ -96,6 +109,7 @@ class PemMethod final : public Method<Dim> {
   StepProblem step() override {
     solver_.step();
     const long s = solver_.step_count();
+    if (grower_) grower_->check(solver_.time());
     if (relax_ && relax_->due(s)) {
       const auto g = solver_.global_state();
       m_.damping = relax_->check(g.time, g.strain, g.kinetic, m_.points);
@@ -192,6 +206,7 @@ class PemMethod final : public Method<Dim> {
       j["pairs_by_material"][m_.materials[k].name] = all[k];
       j["broken_pairs_by_material"][m_.materials[k].name] = broke[k];
     }
+    if (grower_) j["tips"] = grower_->info();
     if (relax_)
       j["static"] = {{"tolerance", relax_->tolerance()}, {"reached", relax_->reached()},
                      {"lowest_mode_rad_per_s", relax_->omega()}, {"damping_per_s", relax_->kappa()}};
@@ -202,11 +217,13 @@ class PemMethod final : public Method<Dim> {
     solver_.save(w);
     w.value(end_), w.value(end_time_), w.value(calm_), w.value(last_speed_), w.value(last_residual_);
     if (relax_) relax_->save(w);
+    if (grower_) grower_->save(w);
   }
   void load(StateReader& r) override {
     solver_.load(r);
     r.value(end_), r.value(end_time_), r.value(calm_), r.value(last_speed_), r.value(last_residual_);
     if (relax_) relax_->load(r), m_.damping = relax_->kappa();
+    if (grower_) grower_->load(r);
   }
 
  private:
@@ -234,6 +251,7 @@ class PemMethod final : public Method<Dim> {
   PemSolver<Dim> solver_;
   CrackTracer<Dim> tracer_;
   std::optional<Relaxation> relax_;
+  std::optional<TipGrower<Dim>> grower_;
   bool breakable_ = false;
   std::size_t least_ = 2, pieces0_ = 0;
   End end_ = End::None;

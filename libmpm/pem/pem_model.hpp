@@ -82,6 +82,31 @@ struct Equilibrium {
   int interval = 10;
 };
 
+// "pem.tip_growth" (2D, tip_growth.hpp): pre-cracks grow from their tips by the maximum hoop stress
+// criterion on K_I, K_II read from their faces, instead of by pairs breaking on their own stretch.
+struct TipGrowthSettings {
+  bool enabled = false;
+  double radius = 0.0;     // m: the faces' jumps are fitted between 1 mesh size and this behind a tip
+  double length = 0.0;     // m: how far a tip advances per growth (default 1 mesh size)
+  double max_speed = 0.0;  // m/s: a tip grows again only after length / max_speed (default: Rayleigh speed)
+};
+
+// A tip of a pre-crack inside the bodies, tracked while it grows (reference coordinates).
+template <int Dim>
+struct GrowingTip {
+  std::string crack;
+  Vec<Dim> start = Vec<Dim>::Zero(), x = Vec<Dim>::Zero(), dir = Vec<Dim>::Zero();  // dir: unit, outward
+  double modulus = 0.0;    // E' (Pa) of the material at the tip: E (plane stress), E / (1 - nu^2)
+  double toughness = 0.0;  // K_Ic (Pa sqrt(m)) = sqrt(E' G_c)
+  std::string material;
+  int32_t active = 1, growths = 0;
+  int32_t stop = 0;       // why it stopped: 1 an edge, 2 a crack
+  int32_t last_cut = -1;  // the first crack-normal index of its last advance
+  double run = 0.0;       // m: the straight length behind it since its direction last changed
+  double first_time = -1.0, last_time = -1.0, kink = 0.0;  // kink: first growth vs the pre-crack (rad, ccw)
+  double first_KI = 0.0, first_KII = 0.0;                   // Pa sqrt(m), when it first grew
+};
+
 template <int Dim>
 struct PemSystem : RunSettings {
   Analysis analysis = Dim == 3 ? Analysis::ThreeD : Analysis::PlaneStress;
@@ -103,6 +128,8 @@ struct PemSystem : RunSettings {
   int max_halvings = 5;
   bool stop_on_separation = true;
   double fragment_fraction = 0.01;
+  TipGrowthSettings tip_growth;
+  std::vector<GrowingTip<Dim>> tips;  // with tip growth: the pre-cracks' tips inside the bodies
 };
 
 }  // namespace cleave::pem

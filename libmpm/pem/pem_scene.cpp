@@ -15,6 +15,7 @@
 #include "libmpm/pem/calibration.hpp"
 #include "libmpm/pem/pem_loads.hpp"
 #include "libmpm/pem/pem_material.hpp"
+#include "libmpm/pem/tip_growth.hpp"
 #include "libmpm/scene/bodies.hpp"
 #include "libmpm/scene/budget.hpp"
 #include "libmpm/scene/resolution.hpp"
@@ -96,7 +97,7 @@ PemSystem<Dim> build_pem_system(const json& scene) {
   static const json no_section = json::object();
   const ObjectReader r(top.has("pem") ? scene["pem"] : no_section, "pem",
                        {"mesh_size", "elements", "structured", "mesh_file", "regions", "friction", "equilibrium",
-                        "break_limit", "max_halvings", "stop_on_separation", "fragment_fraction"});
+                        "break_limit", "max_halvings", "stop_on_separation", "fragment_fraction", "tip_growth"});
   MeshOptions opt;
   if (r.has("elements")) {
     const std::string e = r.string("elements");
@@ -302,7 +303,7 @@ PemSystem<Dim> build_pem_system(const json& scene) {
     }
     for (std::size_t mi = 0; mi < m.materials.size(); ++mi) {
       if (tensors[mi].volume > 0) S[mi] /= tensors[mi].volume;
-      set_pair_law(m.materials[mi], S[mi], "materials[" + std::to_string(mi) + "]");
+      set_pair_law(m.materials[mi], S[mi], "materials[" + std::to_string(mi) + "]", !r.has("tip_growth"));
     }
   }
   std::sort(shares.begin(), shares.end(), [](const Share& x, const Share& y) { return std::tie(x.i, x.j) < std::tie(y.i, y.j); });
@@ -324,8 +325,11 @@ PemSystem<Dim> build_pem_system(const json& scene) {
   // contact; they are kept: crack tracing and damage count them.
   std::vector<uint8_t> cut(pi.size(), 0);
   std::vector<Vec<Dim>> normal(pi.size(), Vec<Dim>::Zero());
+  std::vector<std::vector<Vec<Dim>>> crack_points;  // for tip growth
+  std::vector<std::string> crack_names;
   if (top.has("cracks")) {
     for (const auto& c : crack::read_surfaces<Dim>(scene["cracks"], "cracks", L, {m.mesh_size, false})) {
+      crack_points.push_back(c.points), crack_names.push_back(c.name);
       std::size_t count = 0;
       for (std::size_t q = 0; q < pi.size(); ++q)
         if (!cut[q] && crack::segment_crosses<Dim>(c, P.x0[pi[q]], P.x0[pj[q]])) {
@@ -338,7 +342,7 @@ PemSystem<Dim> build_pem_system(const json& scene) {
     for (std::size_t i = 0; i < scene["cracks"].size(); ++i)
       if (scene["cracks"][i].is_object() && scene["cracks"][i].contains("propagation"))
         m.warnings.push_back("cracks[" + std::to_string(i) + "].propagation is ignored: pem grows cracks by breaking "
-                             "pairs at the cutoff distance of the material");
+                             "pairs at the cutoff distance of the material, or from their tips with pem.tip_growth");
   }
   m.pair_count = pi.size();
   // Directed lists: count, then fill in (i, j) order so every particle's entries are sorted by partner.
@@ -375,6 +379,8 @@ PemSystem<Dim> build_pem_system(const json& scene) {
       N.alpha.assign(entries, 0.0);
     }
   }
+  if (r.has("tip_growth"))
+    read_tip_growth<Dim>(r["tip_growth"], r.at("tip_growth"), units, crack_points, crack_names, m);
   // --- stable step: sqrt(2 m_i / sum_j k_ij) (Gershgorin's bound on the highest frequency) --------
   {
     double worst = std::numeric_limits<double>::infinity();
