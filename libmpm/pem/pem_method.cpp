@@ -53,7 +53,7 @@ class PemMethod final : public Method<Dim> {
     if (m_.static_tolerance > 0) relax_.emplace(m_.static_tolerance);
     if (m_.tip_growth.enabled) grower_.emplace(m_);
     for (const auto& mat : m_.materials) breakable_ = breakable_ || std::isfinite(mat.law.eps_cut);
-    breakable_ = breakable_ || m_.precrack_pairs > 0;
+    breakable_ = breakable_ || m_.precrack_pairs > 0 || m_.tip_growth.enabled;
     least_ = std::max<std::size_t>(2, std::size_t(m_.fragment_fraction * double(m_.points.x0.size())));
     pieces0_ = pieces(m_.pairs, m_.points.x0.size(), least_);
   }
