@@ -446,6 +446,18 @@ TEST(PemSceneErrors, TipGrowthIsRefusedWhereItCannotWorkNamingTheKey) {
   s = base;
   s["cracks"][0]["points"] = {{60, 0}, {70, 0}};  // outside the disc
   EXPECT_EQ(refusal(s), "pem.tip_growth: no crack has a tip inside the bodies");
+  const json bar = json::parse(R"({"method": "pem", "analysis": {"type": "3d"}, "resolution": 0.05,
+    "pem": {"tip_growth": {}},
+    "materials": [{"name": "steel", "type": "linear_elastic", "E": 2e11, "density": 7800, "fracture_energy": 1e4}],
+    "bodies": [{"name": "bar", "material": "steel", "shape": {"type": "box", "min": [0, 0, 0], "max": [0.4, 0.1, 0.1]}}],
+    "time": {"end": 1e-4}})");
+  std::string why = "(accepted)";
+  try {
+    build_pem_system<3>(bar);
+  } catch (const SceneError& e) {
+    why = e.what();
+  }
+  EXPECT_EQ(why, "pem.tip_growth: tip growth is 2D only (3D pem cracks grow by pairs breaking)");
 }
 
 // A mesh drawn elsewhere: a Gmsh .msh file whose physical groups are the bodies, each mapped to a
