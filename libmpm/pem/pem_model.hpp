@@ -99,8 +99,8 @@ struct GrowingTip {
   double modulus = 0.0;    // E' (Pa) of the material at the tip: E (plane stress), E / (1 - nu^2)
   double toughness = 0.0;  // K_Ic (Pa sqrt(m)) = sqrt(E' G_c)
   std::string material;
-  int32_t active = 1, growths = 0;
-  int32_t stop = 0;       // why it stopped: 1 an edge, 2 a crack
+  int32_t growths = 0;
+  int32_t stop = 0;       // 0 growing; why it stopped: 1 an edge, 2 a crack
   int32_t last_cut = -1;  // the first crack-normal index of its last advance
   double run = 0.0;       // m: the straight length behind it since its direction last changed
   double first_time = -1.0, last_time = -1.0, kink = 0.0;  // kink: first growth vs the pre-crack (rad, ccw)

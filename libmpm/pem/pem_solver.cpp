@@ -270,42 +270,40 @@ std::vector<double> PemSolver<Dim>::damage() const {
 }
 
 template <int Dim>
-Sym<Dim> PemSolver<Dim>::particle_stress(std::size_t i) const {
+std::vector<Sym<Dim>> PemSolver<Dim>::stress() const {
   const auto& P = m_.points;
   const auto& N = m_.pairs;
-  Mat<Dim> S = Mat<Dim>::Zero();
-  for (int64_t e = N.offset[i]; e < N.offset[i + 1]; ++e) {
-    const Vec<Dim> d = separation(e, P.u[i], N.partner[e]);
-    const double r = d.norm(), l0 = N.l0[e], k = N.k[e];
-    if (!(r > 0.0)) continue;
-    const PairLaw& law = m_.materials[N.law[e]].law;
-    double f = 0.0;
-    if (N.cut[e] >= 0 && !N.intact[e]) {
-      // Contact across a pre-crack: the force k g n, along the crack normal.
-      const double g = cut_gap(i, e);
-      if (g < 0.0) S += (k * g) * cut_direction(i, e) * d.transpose();
-      continue;
-    }
-    if (N.intact[e]) f = plastic_ && law.plastic() ? k * (r - N.b[e]) : elastic_force(k, l0, r - l0, law);
-    else if (r < l0) f = k * (r - l0);
-    S += (f / r) * d * d.transpose();
-  }
-  S *= 0.5 / P.volume[i];
-  Sym<Dim> out;
-  if constexpr (Dim == 2) {
-    out << S(0, 0), S(1, 1), m_.analysis == Analysis::PlaneStrain ? 0.25 * (S(0, 0) + S(1, 1)) : 0.0, S(0, 1);
-  } else {
-    out << S(0, 0), S(1, 1), S(2, 2), S(0, 1), S(1, 2), S(0, 2);
-  }
-  return out;
-}
-
-template <int Dim>
-std::vector<Sym<Dim>> PemSolver<Dim>::stress() const {
-  const std::size_t n = m_.points.x0.size();
+  const std::size_t n = P.x0.size();
   std::vector<Sym<Dim>> sig(n);
+  const bool plane_strain = m_.analysis == Analysis::PlaneStrain;
 #pragma omp parallel for schedule(static) if (parallel_)
-  for (std::size_t i = 0; i < n; ++i) sig[i] = particle_stress(i);
+  for (std::size_t i = 0; i < n; ++i) {
+    Mat<Dim> S = Mat<Dim>::Zero();
+    for (int64_t e = N.offset[i]; e < N.offset[i + 1]; ++e) {
+      const Vec<Dim> d = separation(e, P.u[i], N.partner[e]);
+      const double r = d.norm(), l0 = N.l0[e], k = N.k[e];
+      if (!(r > 0.0)) continue;
+      const PairLaw& law = m_.materials[N.law[e]].law;
+      double f = 0.0;
+      if (N.cut[e] >= 0 && !N.intact[e]) {
+        // Contact across a pre-crack: the force k g n, along the crack normal.
+        const double g = cut_gap(i, e);
+        if (g < 0.0) S += (k * g) * cut_direction(i, e) * d.transpose();
+        continue;
+      }
+      if (N.intact[e]) f = plastic_ && law.plastic() ? k * (r - N.b[e]) : elastic_force(k, l0, r - l0, law);
+      else if (r < l0) f = k * (r - l0);
+      S += (f / r) * d * d.transpose();
+    }
+    S *= 0.5 / P.volume[i];
+    Sym<Dim> out;
+    if constexpr (Dim == 2) {
+      out << S(0, 0), S(1, 1), plane_strain ? 0.25 * (S(0, 0) + S(1, 1)) : 0.0, S(0, 1);
+    } else {
+      out << S(0, 0), S(1, 1), S(2, 2), S(0, 1), S(1, 2), S(0, 2);
+    }
+    sig[i] = out;
+  }
   return sig;
 }
 

@@ -47,7 +47,6 @@ class PemSolver {
   // Stress from the pair forces: sigma_i = 1/(2 V_i) sum_j F_ij (x) d_ij, symmetrised; zz from the
   // analysis (plane stress 0, plane strain nu (xx + yy) with the network's nu = 1/4).
   std::vector<Sym<Dim>> stress() const;
-  Sym<Dim> particle_stress(std::size_t i) const;  // the same for one particle
   // Current positions x0 + u, for the frames (the step works with reference vectors and displacements).
   std::vector<Vec<Dim>> positions() const;
 

@@ -6,6 +6,7 @@
 
 #include "libmpm/core/error.hpp"
 #include "libmpm/core/json_reader.hpp"
+#include "libmpm/crack/crack2d.hpp"
 #include "libmpm/crack/crossing.hpp"
 #include "libmpm/crack/propagation.hpp"
 #include "libmpm/method/describe.hpp"
@@ -13,13 +14,19 @@
 namespace cleave::pem {
 namespace {
 
-// Closed segments a-b and c-d meet (exact orientation signs; touching counts, collinear does not:
-// a pair lying along the new crack segment is not cut by it).
+// The closed segments a-b and c-d meet (crack::segments_intersect), unless all four points are
+// collinear: a pair lying along the new crack segment is not cut by it.
 bool segments_meet(const Vec<2>& a, const Vec<2>& b, const Vec<2>& c, const Vec<2>& d) {
-  const int s1 = crack::area_sign(a, b, c), s2 = crack::area_sign(a, b, d);
-  const int s3 = crack::area_sign(c, d, a), s4 = crack::area_sign(c, d, b);
-  if (s1 == 0 && s2 == 0) return false;
-  return s1 * s2 <= 0 && s3 * s4 <= 0;
+  if (crack::area_sign(a, b, c) == 0 && crack::area_sign(a, b, d) == 0) return false;
+  return crack::segments_intersect(a, b, c, d);
+}
+
+// A particle of `points` lies within r of x (reference positions).
+template <int Dim>
+bool particle_within(const std::vector<Vec<Dim>>& points, const Vec<Dim>& x, double r) {
+  for (const auto& p : points)
+    if ((p - x).squaredNorm() < r * r) return true;
+  return false;
 }
 
 template <int Dim>
@@ -33,14 +40,6 @@ template <int Dim>
 TipGrower<Dim>::TipGrower(PemSystem<Dim>& m) : m_(m) {
   near_.resize(m_.tips.size());
   near_at_.assign(m_.tips.size(), Vec<Dim>::Constant(std::numeric_limits<double>::quiet_NaN()));
-}
-
-template <int Dim>
-bool TipGrower<Dim>::inside(const Vec<Dim>& x) const {
-  const double reach2 = std::pow(0.75 * m_.mesh_size, 2);
-  for (const auto& p : m_.points.x0)
-    if ((p - x).squaredNorm() < reach2) return true;
-  return false;
 }
 
 template <int Dim>
@@ -160,7 +159,7 @@ std::size_t TipGrower<Dim>::check(double t) {
     std::size_t cut = 0;
     for (std::size_t k = 0; k < m_.tips.size(); ++k) {
       auto& tip = m_.tips[k];
-      if (!tip.active || (tip.last_time >= 0 && t - tip.last_time < g.length / g.max_speed)) continue;
+      if (tip.stop || (tip.last_time >= 0 && t - tip.last_time < g.length / g.max_speed)) continue;
       refresh_near(k);
       double KI = 0, KII = 0;
       Vec<2> along;
@@ -188,8 +187,8 @@ std::size_t TipGrower<Dim>::check(double t) {
       tip.last_cut = static_cast<int32_t>(m_.pairs.cut_normal.size() / 2);
       cut += cut_pairs(tip.x, next);
       tip.x = next, tip.dir = dir, tip.last_time = t, ++tip.growths;
-      if (meets) tip.active = 0, tip.stop = 2;                   // it reached a crack (or its own path)
-      else if (!inside(next)) tip.active = 0, tip.stop = 1;      // it left the bodies: an edge reached
+      if (meets) tip.stop = 2;                                                         // a crack (or its own path)
+      else if (!particle_within(m_.points.x0, next, 0.75 * m_.mesh_size)) tip.stop = 1;  // it left the bodies
     }
     return cut;
   }
@@ -219,7 +218,7 @@ nlohmann::json TipGrower<Dim>::info() const {
 template <int Dim>
 void TipGrower<Dim>::save(StateWriter& w) const {
   for (const auto& tip : m_.tips) {
-    w.value(tip.x), w.value(tip.dir), w.value(tip.active), w.value(tip.stop), w.value(tip.last_cut), w.value(tip.run), w.value(tip.growths);
+    w.value(tip.x), w.value(tip.dir), w.value(tip.stop), w.value(tip.last_cut), w.value(tip.run), w.value(tip.growths);
     w.value(tip.first_time), w.value(tip.last_time), w.value(tip.kink), w.value(tip.first_KI), w.value(tip.first_KII);
   }
   w.array(m_.pairs.cut), w.array(m_.pairs.cut_normal);
@@ -228,7 +227,7 @@ void TipGrower<Dim>::save(StateWriter& w) const {
 template <int Dim>
 void TipGrower<Dim>::load(StateReader& r) {
   for (auto& tip : m_.tips) {
-    r.value(tip.x), r.value(tip.dir), r.value(tip.active), r.value(tip.stop), r.value(tip.last_cut), r.value(tip.run), r.value(tip.growths);
+    r.value(tip.x), r.value(tip.dir), r.value(tip.stop), r.value(tip.last_cut), r.value(tip.run), r.value(tip.growths);
     r.value(tip.first_time), r.value(tip.last_time), r.value(tip.kink), r.value(tip.first_KI), r.value(tip.first_KII);
   }
   r.array(m_.pairs.cut, "pair entries");
@@ -273,11 +272,8 @@ void read_tip_growth(const nlohmann::json& section, const std::string& key, cons
       const Vec<Dim> behind = tip.x - (end ? pts[pts.size() - 2] : pts[1]);
       tip.dir = behind.normalized();
       tip.run = behind.norm();
+      if (!particle_within(m.points.x0, Vec<Dim>(tip.x + 0.5 * h * tip.dir), 0.75 * h)) continue;
       m.tips.push_back(tip);
-      if (!TipGrower<Dim>(m).inside(tip.x + 0.5 * h * tip.dir)) {
-        m.tips.pop_back();
-        continue;
-      }
       std::size_t nearest = 0;
       for (std::size_t p = 1; p < m.points.x0.size(); ++p)
         if ((m.points.x0[p] - tip.x).squaredNorm() < (m.points.x0[nearest] - tip.x).squaredNorm()) nearest = p;

@@ -9,7 +9,7 @@
 // at a finite distance), and where the maximum hoop stress criterion (Erdogan & Sih 1963) holds,
 // K_eq(theta_c) >= K_Ic = sqrt(E' G_c), the tip advances a set length at theta_c and the pairs
 // crossing the new segment are cut, to touch and slide across it as a pre-crack's do. A tip stops
-// where it leaves the bodies.
+// where it leaves the bodies or meets a crack.
 #pragma once
 #include <cstddef>
 #include <vector>
@@ -36,7 +36,6 @@ class TipGrower {
   bool intensities(std::size_t k, double& KI, double& KII, Vec<Dim>& along) const;
 
   nlohmann::json info() const;  // run.json's "tips"
-  bool inside(const Vec<Dim>& x) const;  // a particle within 0.75 mesh sizes of x
   void save(StateWriter& w) const;
   void load(StateReader& r);
 
