@@ -29,6 +29,23 @@ bool particle_within(const std::vector<Vec<Dim>>& points, const Vec<Dim>& x, dou
   return false;
 }
 
+// Calls visit(e, i, j) for each pair (i < j, entry e of i) whose segment meets a-b (segments_meet),
+// until it returns true; returns whether it did. Only particles within |b - a| + 4 mesh sizes of a
+// are looked at: a crossing pair's ends lie that near.
+template <class Visit>
+bool for_pairs_crossing(const PemPairs& N, const std::vector<Vec<2>>& X, const Vec<2>& a, const Vec<2>& b,
+                        double mesh_size, Visit visit) {
+  const double reach = (b - a).norm() + 4.0 * mesh_size;
+  for (std::size_t i = 0; i < X.size(); ++i) {
+    if ((X[i] - a).squaredNorm() > reach * reach) continue;
+    for (int64_t e = N.offset[i]; e < N.offset[i + 1]; ++e) {
+      const auto j = static_cast<std::size_t>(N.partner[e]);
+      if (j > i && segments_meet(X[i], X[j], a, b) && visit(e, i, j)) return true;
+    }
+  }
+  return false;
+}
+
 template <int Dim>
 std::vector<double> as_vector(const Vec<Dim>& x) {
   return std::vector<double>(x.data(), x.data() + Dim);
@@ -101,25 +118,20 @@ std::size_t TipGrower<Dim>::cut_pairs(const Vec<Dim>& a, const Vec<Dim>& b) {
     return 0;
   } else {
     auto& N = m_.pairs;
-    const auto& X = m_.points.x0;
     Vec<2> normal(-(b - a)[1], (b - a)[0]);
     normal.normalize();
     std::size_t count = 0;
-    const double reach = (b - a).norm() + 4.0 * m_.mesh_size;  // a crossing pair's ends lie this near a
-    for (std::size_t i = 0; i < X.size(); ++i) {
-      if ((X[i] - a).squaredNorm() > reach * reach) continue;
-      for (int64_t e = N.offset[i]; e < N.offset[i + 1]; ++e) {
-        const auto j = static_cast<std::size_t>(N.partner[e]);
-        if (j < i || !N.intact[e] || !segments_meet(X[i], X[j], a, b)) continue;
-        // Both entries of the pair: this one and its mirror in j's list (sorted by partner).
-        const auto first = N.partner.begin() + N.offset[j], last = N.partner.begin() + N.offset[j + 1];
-        const auto mirror = static_cast<int64_t>(std::lower_bound(first, last, static_cast<int32_t>(i)) - N.partner.begin());
-        const auto index = static_cast<int32_t>(N.cut_normal.size() / 2);
-        N.cut_normal.push_back(normal[0]), N.cut_normal.push_back(normal[1]);
-        for (int64_t f : {e, mirror}) N.intact[f] = 0, N.cut[f] = index;
-        ++count;
-      }
-    }
+    for_pairs_crossing(N, m_.points.x0, a, b, m_.mesh_size, [&](int64_t e, std::size_t i, std::size_t j) {
+      if (!N.intact[e]) return false;
+      // Both entries of the pair: this one and its mirror in j's list (sorted by partner).
+      const auto first = N.partner.begin() + N.offset[j], last = N.partner.begin() + N.offset[j + 1];
+      const auto mirror = static_cast<int64_t>(std::lower_bound(first, last, static_cast<int32_t>(i)) - N.partner.begin());
+      const auto index = static_cast<int32_t>(N.cut_normal.size() / 2);
+      N.cut_normal.push_back(normal[0]), N.cut_normal.push_back(normal[1]);
+      for (int64_t f : {e, mirror}) N.intact[f] = 0, N.cut[f] = index;
+      ++count;
+      return false;
+    });
     return count;
   }
 }
@@ -134,18 +146,11 @@ bool TipGrower<Dim>::meets_crack(const GrowingTip<Dim>& tip, const Vec<Dim>& b) 
     // (the path just behind it: a pair crossing it near the tip reaches ahead), are not a crack met.
     const auto& N = m_.pairs;
     const auto& X = m_.points.x0;
-    const Vec<2> a = tip.x;
-    const double reach = (b - a).norm() + 4.0 * m_.mesh_size, own = 1.5 * m_.mesh_size;
-    for (std::size_t i = 0; i < X.size(); ++i) {
-      if ((X[i] - a).squaredNorm() > reach * reach) continue;
-      for (int64_t e = N.offset[i]; e < N.offset[i + 1]; ++e) {
-        const auto j = static_cast<std::size_t>(N.partner[e]);
-        if (j < i || N.intact[e] || (N.cut[e] >= tip.last_cut && tip.last_cut >= 0)) continue;
-        if ((0.5 * (X[i] + X[j]) - a).norm() < own) continue;
-        if (segments_meet(X[i], X[j], a, b)) return true;
-      }
-    }
-    return false;
+    const double own = 1.5 * m_.mesh_size;
+    return for_pairs_crossing(N, X, tip.x, b, m_.mesh_size, [&](int64_t e, std::size_t i, std::size_t j) {
+      return !N.intact[e] && !(N.cut[e] >= tip.last_cut && tip.last_cut >= 0) &&
+             (0.5 * (X[i] + X[j]) - tip.x).norm() >= own;
+    });
   }
 }
 
