@@ -175,9 +175,12 @@ TEST(Crack3dMotion, PennyCrackInASlowlyRotatingBlockFollowsItWithoutOpening) {
   const Mat<3> A = xX * XX.inverse();
   double drift = 0, opening = 0, turned = 0;
   const auto& c = m.cracks[0];
-  // The body's own departure from the affine map near the crack: the free faces' nodes carry the
-  // velocity of their particles' mass centre, not the node's, so a turning body gains a spurious
-  // strain there (about 0.012 cell of displacement per radian turned, docs/validation.md).
+  // The body's own departure from the affine map near the crack. Before mpm.spin_transfer (on here: the
+  // body has an angular velocity) the free faces' nodes carried the velocity of their particles' mass
+  // centre, and a turning body gained a spurious strain there (about 0.012 cell of displacement per
+  // radian turned), which this test used as the yardstick of the opening; now the material keeps to
+  // the map to round-off (1.6e-10 cell) and the opening is held to the 1e-6 cell, as in the
+  // translating block (it reads 3.3e-10 cell).
   double material = 0;
   for (std::size_t p = 0; p < P.size(); ++p)
     if ((X[p] - Vec<3>(0.0051, 0.0049, 0.0055)).norm() < 0.004)
@@ -194,7 +197,7 @@ TEST(Crack3dMotion, PennyCrackInASlowlyRotatingBlockFollowsItWithoutOpening) {
   EXPECT_GT(turned / h, 0.5);
   EXPECT_LT(drift / h, 1e-6);
   EXPECT_LE(drift, material);  // the crack follows the map at least as closely as the material beside it
-  EXPECT_LE(opening, material);
+  EXPECT_LT(opening / h, 1e-6);
   EXPECT_NEAR(e1.total() / e0.total(), 1.0, 1e-3);
 }
 

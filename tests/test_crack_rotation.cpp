@@ -1,6 +1,6 @@
 // Cracks under rigid rotation (issue 14, items 1-3): a cracked body that spins keeps its energy, its
-// crack closed, and its J and K at zero, whatever the contact detection and law; a loaded DCB gives
-// the same J spinning as at rest. Figures and causes: docs/validation.md, "Cracks under rigid
+// crack closed, and its J and K at zero, whatever the contact detection and law; a loaded DCB that
+// should give the same J spinning as at rest (a miss: out of the suite). Figures and causes: docs/validation.md, "Cracks under rigid
 // rotation (issue 14)".
 #include <gtest/gtest.h>
 
@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "libmpm/crack/tip_parameters.hpp"
@@ -133,6 +134,78 @@ TEST(CrackRotation, SpinningDiskKeepsItsEnergyAndItsCrackClosedWithEveryContactL
 }
 TEST(CrackRotation, SpinningDiskKeepsItsEnergyAndItsCrackClosedWithEveryContactLawUGimp) {
   every_law_and_detection_keeps_the_spinning_disk_still("ugimp");
+}
+
+// The issue's second wish: a loaded DCB at rest and the same DCB spinning slowly give the same J. An
+// aluminium DCB (100 x 36 mm, 2 mm cells, plane stress) cracked along its mid-plane to x = 50 mm, its
+// arms opened by +-0.6 MPa shear tractions on their -x faces ramped over 0.5 ms (static J about
+// 9 J/m^2), run to 1 ms: once at rest, once spinning at 0.1 rad/ms about its centre (0.1 rad turned by
+// the end; the tractions keep their global direction, a change of order angle^2 = 1 % in the opening
+// load). The spin's own physics is small here: centrifugal stress rho omega^2 R^2 = 0.07 MPa against
+// 10 MPa of bending, Coriolis forces 2 omega / (the arms' 37 000 rad/s) = 0.5 % of the inertial ones.
+json loaded_dcb(double omega) {
+  const double traction = 6e5;  // Pa
+  json b = {{"name", "dcb"}, {"material", "aluminium"},
+            {"shape", {{"type", "rectangle"}, {"min", {0, -18}}, {"max", {100, 18}}}}, {"particles_per_cell", 2}};
+  if (omega != 0.0) b["angular_velocity"] = omega, b["rotation_center"] = {50, 0};
+  const auto arm = [&](double y0, double y1, double sign) {
+    return json{{"type", "traction"}, {"body", "dcb"}, {"face", "-x"},
+                {"region", {{"min", {-1, y0}}, {"max", {1, y1}}}}, {"traction", {0, sign * traction}}, {"rise_time", 0.5}};
+  };
+  return {{"units", {{"length", "mm"}, {"stress", "Pa"}, {"density", "g/cm3"}, {"velocity", "m/s"},
+                     {"time", "ms"}, {"inverse_time", "1/ms"}}},
+          {"analysis", {{"type", "plane_stress"}, {"thickness", 1}}},
+          {"resolution", 2},
+          {"grid", {{"min", {-10, -30}}, {"max", {110, 30}}}},
+          {"mpm", {{"shape_function", "linear"}, {"stress_update", "USAVG"}}},
+          {"materials", {test::material("aluminium", 70e9, 0.33, 2.7)}},
+          {"bodies", {b}},
+          {"cracks", {{{"name", "midplane"}, {"from", {-2, 0}}, {"to", {50, 0}}, {"segment_length", 2},
+                       {"contact", {{"law", "frictionless"}, {"detection", "displacement"}}}}}},
+          {"loads", {arm(0, 18, 1.0), arm(-18, 0, -1.0)}},
+          {"time", {{"end", 1.0}, {"cfl", 0.5}}}};
+}
+
+// J at the inner tip every `every` steps to 1 ms: (time in ms, J1).
+std::vector<std::pair<double, double>> dcb_J_history(double omega, int every = 25) {
+  Model<2> m = build_model<2>(loaded_dcb(omega));
+  auto st = make_stepper<2>(m);
+  const crack::TipSettings ts;  // the defaults
+  std::vector<std::pair<double, double>> out;
+  const long steps = std::lround(1.0e-3 / m.dt);
+  for (long k = 1; k <= steps; ++k) {
+    if (st->step()) break;
+    if (k % every == 0)
+      for (const auto& t : st->crack_tip_parameters(ts)) out.emplace_back(st->time() * 1e3, t.J1);
+  }
+  return out;
+}
+
+// The issue asks for J within 2 % of the J at rest; checked at every sample once the load is full
+// (0.5 - 1 ms). It MISSES and is left out of the suite (run it with --gtest_also_run_disabled_tests;
+// CLEAVE_DCB_TRACE=1 prints both histories): the largest difference was 33 % with the stress turned
+// (rotate_with_spin) but without spin_transfer, 21.6 % with spin_transfer (each crack on its own spin
+// fit), 19.8 % with the cracks following the scene's spin; at rest J rings by +-2 % about 13.7 J/m^2,
+// spinning by +-10 %. What remains is not traced (docs/validation.md, "Spinning bodies"). About 10 s.
+TEST(CrackRotation, DISABLED_ALoadedDcbSpinningAtATenthOfARadianPerMillisecondHasTheJItHasAtRest) {
+  const auto rest = dcb_J_history(0.0), spin = dcb_J_history(0.1);
+  ASSERT_EQ(rest.size(), spin.size());
+  ASSERT_FALSE(rest.empty());
+  double worst = 0.0, worst_t = 0.0, Jmax = 0.0;
+  if (std::getenv("CLEAVE_DCB_TRACE"))  // every sample: t, J at rest, J spinning
+    for (std::size_t i = 0; i < rest.size(); ++i) std::printf("%.4f %.5f %.5f\n", rest[i].first, rest[i].second, spin[i].second);
+  for (std::size_t i = 0; i < rest.size(); ++i) {
+    Jmax = std::max(Jmax, rest[i].second);
+    if (rest[i].first < 0.5) continue;
+    const double d = std::fabs(spin[i].second - rest[i].second) / std::fabs(rest[i].second);
+    if (d > worst) worst = d, worst_t = rest[i].first;
+    EXPECT_LT(d, 0.02) << "t = " << rest[i].first << " ms: J at rest " << rest[i].second << ", spinning "
+                       << spin[i].second << " J/m^2";
+  }
+  std::printf("loaded DCB, J at 1 ms: at rest %.4f, spinning %.4f J/m^2; largest difference %.3f %% at %.3f ms "
+              "(J up to %.3f J/m^2)\n",
+              rest.back().second, spin.back().second, 100 * worst, worst_t, Jmax);
+  EXPECT_GT(rest.back().second, 1.0);  // loaded: J of the order of the static 9 J/m^2
 }
 
 // The study behind the figures: every law and detection, linear and uGIMP, at 0.1 and 1 rad/ms.

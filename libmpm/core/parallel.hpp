@@ -7,6 +7,7 @@
 #endif
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstddef>
@@ -50,6 +51,26 @@ double deterministic_sum(std::size_t n, F&& f) {
   }
   double s = 0.0;
   for (double v : partial) s += v;
+  return s;
+}
+
+// K sums at once, f(i, acc) adding item i's terms into acc[0..K): the same fixed chunks and order as
+// deterministic_sum, one pass over the data instead of K.
+template <std::size_t K, class F>
+std::array<double, K> deterministic_sums(std::size_t n, F&& f) {
+  constexpr std::size_t kChunk = 4096;
+  const std::size_t chunks = (n + kChunk - 1) / kChunk;
+  std::vector<std::array<double, K>> partial(chunks);
+#pragma omp parallel for schedule(static) if (chunks > 2 && omp_get_max_threads() > 1)
+  for (std::size_t c = 0; c < chunks; ++c) {
+    std::array<double, K> s{};
+    const std::size_t end = std::min(n, (c + 1) * kChunk);
+    for (std::size_t i = c * kChunk; i < end; ++i) f(i, s.data());
+    partial[c] = s;
+  }
+  std::array<double, K> s{};
+  for (const auto& v : partial)
+    for (std::size_t k = 0; k < K; ++k) s[k] += v[k];
   return s;
 }
 

@@ -1,5 +1,6 @@
 // Isotropic linear elasticity, small strain, integrated incrementally (hypoelastic form
-// dsigma = C : deps), so the same code serves every stress-update scheme. Declared in a header so
+// dsigma = C : deps, stress and strain first turned with the material's spin: rotate_with_spin), so the
+// same code serves every stress-update scheme. Declared in a header so
 // that the solver's stress pass can call it without a virtual call when every material is of this
 // kind (the common case, and the one the benchmark measures).
 #pragma once
@@ -33,6 +34,8 @@ class LinearElastic final : public Material<Dim> {
 
   // The update on scalars (no temporaries in memory): called directly by the solver's stress pass.
   CLEAVE_INLINE inline void update_inline(Sym<Dim>& s, Sym<Dim>& e, const Mat<Dim>& L, double dt) const {
+    rotate_with_spin<Dim>(s, L, dt);
+    rotate_with_spin<Dim>(e, L, dt);
     const double exx = L(0, 0) * dt, eyy = L(1, 1) * dt, exy = 0.5 * (L(0, 1) + L(1, 0)) * dt;
     if constexpr (Dim == 2) {
       const double tr = exx + eyy;

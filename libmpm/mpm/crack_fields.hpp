@@ -71,6 +71,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   using Base::N;
   using typename Base::Entry;
   using typename Base::NearTest;
+  using Base::follow_scene_spin;  // mpm.spin_transfer (crack_fields/crack_motion.hpp)
 
   CrackFields(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin) : Base(m, grid, kin) {
     area0_.resize(P_.size());

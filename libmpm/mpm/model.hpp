@@ -49,6 +49,7 @@ struct Model : RunSettings {
   GridGeometry<Dim> grid;
   ShapeFunctionKind shape_function = ShapeFunctionKind::UGimp;
   Scheme scheme = Scheme::USAVG;
+  bool spin_transfer = false;  // mpm.spin_transfer: nodal velocities carried with the scene's spin (spin_transfer.hpp)
   std::vector<std::unique_ptr<Material<Dim>>> materials;
   std::vector<Body> bodies;
   Particles<Dim> particles;

@@ -127,8 +127,13 @@ Model<Dim> build_model(const json& scene) {
   if (dimension_of(m.analysis) != Dim) throw SceneError("analysis.type", "dimension mismatch");
 
   // --- method -------------------------------------------------------------------------------
+  // spin_transfer: on by default where a body is given a spin (the nodes' velocities then carry it:
+  // spin_transfer.hpp); a body set spinning by an impact may ask for it.
+  if (scene.contains("bodies") && scene["bodies"].is_array())
+    for (const auto& b : scene["bodies"]) m.spin_transfer = m.spin_transfer || (b.is_object() && b.contains("angular_velocity"));
   if (top.has("mpm")) {
-    ObjectReader r(scene["mpm"], "mpm", {"shape_function", "stress_update"});
+    ObjectReader r(scene["mpm"], "mpm", {"shape_function", "stress_update", "spin_transfer"});
+    m.spin_transfer = r.boolean_or("spin_transfer", m.spin_transfer);
     const std::string sf = r.string_or("shape_function", "ugimp");
     const auto& styles = ShapeFunctions::instance();
     const ShapeFunctionStyle* style = styles.find(sf);

@@ -11,6 +11,7 @@
 #include "libmpm/method/describe.hpp"
 #include "libmpm/mpm/crack_fields.hpp"
 #include "libmpm/mpm/crack_front_eval.hpp"
+#include "libmpm/mpm/spin_transfer.hpp"
 #include "libmpm/core/parallel.hpp"
 #include "libmpm/mpm/strip_order.hpp"
 #include "libmpm/mpm/stencil.hpp"
@@ -35,6 +36,7 @@ class MpmStepper final : public Stepper<Dim> {
     for (const auto& mat : m.materials)
       all_linear_elastic_ = all_linear_elastic_ && dynamic_cast<const LinearElastic<Dim>*>(mat.get()) != nullptr;
     if (!m.cracks.empty() || m.body_contact.active()) cf_ = std::make_unique<CrackFields<Dim, SF>>(m, grid_, kin_);
+    if (m.spin_transfer) spin_ = std::make_unique<SpinTransfer<Dim>>(m);
   }
 
   std::string take_warning() override {
@@ -181,6 +183,19 @@ class MpmStepper final : public Stepper<Dim> {
         grid_.momentum[n] += mv * w;
       });
     };
+    if (spin_) {  // the nodes' mass centres too (spin_transfer.hpp)
+      spin_->fit(P_);
+      if (cf_) cf_->follow_scene_spin(spin_->spin());
+      spin_->clear();
+      auto moment = [&](std::size_t p) CLEAVE_INLINE {
+        St s;
+        s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
+        const double mp = P_.mass[p];
+        s.for_each_weight([&](int64_t n, double w) { spin_->add(n, mp * w, P_.x[p]); });
+      };
+      if (cf_) order_.scatter(moment, moment);
+      else order_.scatter(moment);
+    }
     if (cf_) {
       const int32_t* nk = near_index_;
       return order_.scatter(far, [&](std::size_t p) { cf_->extrapolate(nk[p], cf_->stencil(nk[p])); });
@@ -360,6 +375,7 @@ class MpmStepper final : public Stepper<Dim> {
       kin_[n].v = grid_.momentum[n] * inv_m;
       kin_[n].a = grid_.force[n] * inv_m;
     }
+    if (spin_) spin_->carry(grid_.mass, kin_);
     if (cf_) cf_->update_momenta(dt);  // with contact and back-computed forces
   }
 
@@ -458,6 +474,7 @@ class MpmStepper final : public Stepper<Dim> {
 #pragma omp parallel for schedule(static) if (worth_parallel(nn))
     for (std::size_t n = 0; n < nn; ++n)
       if (grid_.mass[n] > 0.0) kin_[n].v = grid_.momentum[n] / grid_.mass[n];
+    if (spin_) spin_->carry(grid_.mass, kin_);
     if (cf_) cf_->nodal_velocities();
   }
 
@@ -509,6 +526,7 @@ class MpmStepper final : public Stepper<Dim> {
   std::vector<NodeKinematics<Dim>> kin_;
   // Explicit cracks: extra velocity fields, contact, crack motion (null without cracks).
   std::unique_ptr<CrackFields<Dim, SF>> cf_;
+  std::unique_ptr<SpinTransfer<Dim>> spin_;  // mpm.spin_transfer (null without it)
   const uint8_t* skip_ = nullptr;         // near-crack flags: those particles take the crack paths
   const int32_t* near_index_ = nullptr;  // per particle: index in the crack module's near list, or -1
   std::vector<Vec<Dim>> dx_;

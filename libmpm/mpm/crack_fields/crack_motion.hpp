@@ -9,6 +9,7 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
@@ -128,6 +129,7 @@ class CrackMotion : public FieldSlots<Dim, SF> {
     vm.resize(np);
 #pragma omp parallel for schedule(static) if (parallel_points(np))
     for (std::size_t i = 0; i < np; ++i) vm[i] = cm_velocity(c.points[i]);
+    if (scene_spin_) return *scene_spin_;
     V xm = V::Zero(), vbar = V::Zero();
     for (std::size_t i = 0; i < np; ++i) xm += c.points[i], vbar += vm[i];
     xm /= static_cast<double>(np), vbar /= static_cast<double>(np);
@@ -154,6 +156,15 @@ class CrackMotion : public FieldSlots<Dim, SF> {
       return den > 0.0 ? num / den : 0.0;
     }
   }
+  // With mpm.spin_transfer the cracks follow the scene's spin (the rigid fit of every particle,
+  // spin_transfer.hpp), which the nodes off the cracks carry their velocities with: one spin on both
+  // sides of a block's edge. A crack's own fit, from its points' centre-of-mass velocities, reads the
+  // mouth of an edge crack (points at the body's edge, whose nodes move with their mass centres half a
+  // cell inside) and the faces' opening.
+ public:
+  void follow_scene_spin(const Spin& w) { scene_spin_ = w; }
+
+ protected:
   static V cross(double omega, const V& r) { return V(-omega * r.y(), omega * r.x()); }
   static V cross(const Vec<3>& omega, const V& r) { return omega.cross(r); }
   static Spin no_spin() {
@@ -337,6 +348,7 @@ class CrackMotion : public FieldSlots<Dim, SF> {
 
   std::vector<std::vector<SideFields>> side_fields_;  // per crack, two per point (side_fields())
   std::vector<Spin> spin_;                            // per crack: its spin (crack_spin, update_spins)
+  std::optional<Spin> scene_spin_;                    // follow_scene_spin: every crack's spin, when set
   std::vector<std::vector<uint8_t>> tip_point_;       // 3D, per crack and point: on a front that is a tip
   std::vector<std::vector<V>> point_normal_;          // 3D, per crack and point: normal (find_side_fields)
   std::vector<std::vector<V>> vm_;                    // per crack: its points' centre-of-mass velocities
