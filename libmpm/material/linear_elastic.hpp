@@ -34,8 +34,7 @@ class LinearElastic final : public Material<Dim> {
 
   // The update on scalars (no temporaries in memory): called directly by the solver's stress pass.
   CLEAVE_INLINE inline void update_inline(Sym<Dim>& s, Sym<Dim>& e, const Mat<Dim>& L, double dt) const {
-    rotate_with_spin<Dim>(s, L, dt);
-    rotate_with_spin<Dim>(e, L, dt);
+    rotate_with_spin<Dim>(s, e, L, dt);
     const double exx = L(0, 0) * dt, eyy = L(1, 1) * dt, exy = 0.5 * (L(0, 1) + L(1, 0)) * dt;
     if constexpr (Dim == 2) {
       const double tr = exx + eyy;

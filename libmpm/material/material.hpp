@@ -3,6 +3,7 @@
 // both in the Sym<Dim> layout of core/types.hpp.
 #pragma once
 #include <cmath>
+#include <initializer_list>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -58,33 +59,39 @@ class Material {
   }
 };
 
-// Turns a symmetric tensor (a stress or a strain, Sym layout) with the material's spin over dt:
-// t <- R t R^T, R the Cayley (Hughes-Winget) rotation of the spin W = (L - L^T)/2, which is exactly
+// Turns two symmetric tensors (a stress and a strain, Sym layout) with the material's spin over dt:
+// t <- R t R^T (and u), R the Cayley (Hughes-Winget) rotation of the spin W = (L - L^T)/2, which is exactly
 // orthogonal (a spinning body keeps its stress's invariants to round-off) and second-order accurate in
 // the angle. Incremental (hypoelastic) laws call it before adding their increment, so that a body that
 // turns carries its stress with it: without it a stressed body turned by an angle theta keeps its
-// stress components in the fixed axes, an error of order theta times the stress, and a loaded DCB that
-// turns by 0.1 rad read a different J (docs/validation.md, cracks under rigid rotation). Objective.
+// stress components in the fixed axes, an error of order theta times the stress (docs/validation.md,
+// spinning bodies). Objective. One call for both tensors: the rotation's coefficients once.
 template <int Dim>
-CLEAVE_INLINE inline void rotate_with_spin(Sym<Dim>& t, const Mat<Dim>& L, double dt) {
+CLEAVE_INLINE inline void rotate_with_spin(Sym<Dim>& t, Sym<Dim>& u, const Mat<Dim>& L, double dt) {
   if constexpr (Dim == 2) {
     const double q = 0.25 * (L(1, 0) - L(0, 1)) * dt;  // half the angle turned (counter-clockwise)
     const double d = 1.0 / (1.0 + q * q), c = (1.0 - q * q) * d, s = 2.0 * q * d;
-    const double cc = c * c, ss = s * s, cs = c * s;
-    const double xx = t[0], yy = t[1], xy = t[3];
-    t[0] = cc * xx + ss * yy - 2.0 * cs * xy;
-    t[1] = ss * xx + cc * yy + 2.0 * cs * xy;
-    t[3] = cs * (xx - yy) + (cc - ss) * xy;
+    const double cc = c * c, ss = s * s, cs = c * s, cs2 = 2.0 * cs, dd = cc - ss;
+    for (Sym<2>* a : {&t, &u}) {
+      Sym<2>& x = *a;
+      const double xx = x[0], yy = x[1], xy = x[3];
+      x[0] = cc * xx + ss * yy - cs2 * xy;
+      x[1] = ss * xx + cc * yy + cs2 * xy;
+      x[3] = cs * (xx - yy) + dd * xy;
+    }
   } else {
     // q: half the rotation vector; R = I + 2/(1 + |q|^2) (Q + Q^2), Q v = q x v.
     const Vec<3> q = (0.25 * dt) * Vec<3>(L(2, 1) - L(1, 2), L(0, 2) - L(2, 0), L(1, 0) - L(0, 1));
     Mat<3> Q;
     Q << 0.0, -q.z(), q.y(), q.z(), 0.0, -q.x(), -q.y(), q.x(), 0.0;
     const Mat<3> R = Mat<3>::Identity() + (2.0 / (1.0 + q.squaredNorm())) * (Q + Q * Q);
-    Mat<3> T;
-    T << t[0], t[3], t[5], t[3], t[1], t[4], t[5], t[4], t[2];
-    const Mat<3> U = R * T * R.transpose();
-    t << U(0, 0), U(1, 1), U(2, 2), 0.5 * (U(0, 1) + U(1, 0)), 0.5 * (U(1, 2) + U(2, 1)), 0.5 * (U(0, 2) + U(2, 0));
+    for (Sym<3>* a : {&t, &u}) {
+      Sym<3>& x = *a;
+      Mat<3> T;
+      T << x[0], x[3], x[5], x[3], x[1], x[4], x[5], x[4], x[2];
+      const Mat<3> U = R * T * R.transpose();
+      x << U(0, 0), U(1, 1), U(2, 2), 0.5 * (U(0, 1) + U(1, 0)), 0.5 * (U(1, 2) + U(2, 1)), 0.5 * (U(0, 2) + U(2, 0));
+    }
   }
 }
 

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "libmpm/material/linear_elastic.hpp"
 #include "libmpm/method/describe.hpp"
@@ -173,34 +174,39 @@ class MpmStepper final : public Stepper<Dim> {
     CLEAVE_TIME(Task1);
     std::fill(grid_.mass.begin(), grid_.mass.end(), 0.0);
     std::fill(grid_.momentum.begin(), grid_.momentum.end(), Vec<Dim>::Zero());
-    auto far = [&](std::size_t p) CLEAVE_INLINE {
-      St s;
-      s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
-      const double mp = P_.mass[p];
-      const Vec<Dim> mv = mp * P_.v[p];
-      s.for_each_weight([&](int64_t n, double w) {
-        grid_.mass[n] += mp * w;
-        grid_.momentum[n] += mv * w;
-      });
-    };
-    if (spin_) {  // the nodes' mass centres too (spin_transfer.hpp)
-      spin_->fit(P_);
-      if (cf_) cf_->follow_scene_spin(spin_->spin());
-      spin_->clear();
-      auto moment = [&](std::size_t p) CLEAVE_INLINE {
+    // With spin_transfer the same pass sums the nodes' mass-weighted positions (spin_transfer.hpp).
+    auto pass = [&](auto with_moments) {
+      constexpr bool moments = decltype(with_moments)::value;
+      auto far = [&](std::size_t p) CLEAVE_INLINE {
         St s;
         s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
         const double mp = P_.mass[p];
-        s.for_each_weight([&](int64_t n, double w) { spin_->add(n, mp * w, P_.x[p]); });
+        const Vec<Dim> mv = mp * P_.v[p];
+        Vec<Dim> r = Vec<Dim>::Zero();
+        if constexpr (moments) r = spin_->offset(P_.x[p]);
+        s.for_each_weight([&](int64_t n, double w) {
+          grid_.mass[n] += mp * w;
+          grid_.momentum[n] += mv * w;
+          if constexpr (moments) spin_->add(n, mp * w, r);
+        });
       };
-      if (cf_) order_.scatter(moment, moment);
-      else order_.scatter(moment);
-    }
-    if (cf_) {
+      if (!cf_) return order_.scatter(far);
       const int32_t* nk = near_index_;
-      return order_.scatter(far, [&](std::size_t p) { cf_->extrapolate(nk[p], cf_->stencil(nk[p])); });
-    }
-    order_.scatter(far);
+      order_.scatter(far, [&](std::size_t p) CLEAVE_INLINE {
+        cf_->extrapolate(nk[p], cf_->stencil(nk[p]));
+        if constexpr (moments) {
+          St s;
+          s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
+          const Vec<Dim> r = spin_->offset(P_.x[p]);
+          s.for_each_weight([&](int64_t n, double w) { spin_->add(n, P_.mass[p] * w, r); });
+        }
+      });
+    };
+    if (!spin_) return pass(std::false_type{});
+    spin_->fit(P_);
+    if (cf_) cf_->follow_scene_spin(spin_->spin());
+    spin_->clear();
+    pass(std::true_type{});
   }
 
   // Passes over the particles. The particles near cracks (with cracks present) take a path of

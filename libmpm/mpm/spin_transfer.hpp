@@ -41,9 +41,11 @@ class SpinTransfer {
     ref_ = G_.origin + 0.5 * (G_.upper() - G_.origin);
   }
 
-  // Task 1: the nodes' mass-weighted positions start afresh; add(n, m_p N_np, x_p) per particle-node pair.
+  // Task 1: the nodes' mass-weighted positions start afresh; add(n, m_p N_np, offset(x_p)) per
+  // particle-node pair.
   void clear() { std::fill(moment_.begin(), moment_.end(), V::Zero()); }
-  void add(int64_t n, double mw, const V& x) { moment_[n] += mw * (x - ref_); }
+  V offset(const V& x) const { return x - ref_; }
+  void add(int64_t n, double mw, const V& r) { moment_[n] += mw * r; }
 
   // The rigid spin of all particles: angular momentum about their mass centre over its inertia.
   void fit(const Particles<Dim>& P) {
@@ -68,8 +70,8 @@ class SpinTransfer {
         for (int j = i; j < Dim; ++j) a[k++] += m * r[i] * r[j];
     });
     const double M = s[0];
-    spin_ = Spin{};
     if constexpr (Dim == 3) spin_ = Vec<3>::Zero();
+    else spin_ = 0.0;
     if (!(M > 0.0)) return;
     V c, vc;
     for (int d = 0; d < Dim; ++d) c[d] = s[1 + d] / M, vc[d] = s[1 + Dim + d] / M;
@@ -112,7 +114,11 @@ class SpinTransfer {
   V ref_;
   std::vector<V> moment_;      // per node: sum m_p N_np (x_p - ref_)
   std::vector<uint8_t> held_;  // per node: a support prescribes some of its velocity
-  Spin spin_{};
+  Spin spin_ = zero_spin();
+  static Spin zero_spin() {
+    if constexpr (Dim == 3) return Vec<3>::Zero();
+    else return 0.0;
+  }
 };
 
 }  // namespace cleave
