@@ -381,7 +381,7 @@ class MpmStepper final : public Stepper<Dim> {
       kin_[n].v = grid_.momentum[n] * inv_m;
       kin_[n].a = grid_.force[n] * inv_m;
     }
-    if (spin_) spin_->carry(grid_.mass, kin_);
+    if (spin_) spin_->carry(grid_.mass, kin_, [&](int64_t n) { return node_position(n); });
     if (cf_) cf_->update_momenta(dt);  // with contact and back-computed forces
   }
 
@@ -480,7 +480,7 @@ class MpmStepper final : public Stepper<Dim> {
 #pragma omp parallel for schedule(static) if (worth_parallel(nn))
     for (std::size_t n = 0; n < nn; ++n)
       if (grid_.mass[n] > 0.0) kin_[n].v = grid_.momentum[n] / grid_.mass[n];
-    if (spin_) spin_->carry(grid_.mass, kin_);
+    if (spin_) spin_->carry(grid_.mass, kin_, [&](int64_t n) { return node_position(n); });
     if (cf_) cf_->nodal_velocities();
   }
 

@@ -91,17 +91,15 @@ class SpinTransfer {
     }
   }
 
-  // The nodal velocities v_n (set from p_n / m_n) carried to their nodes with the spin.
-  template <class Kin>
-  void carry(const std::vector<double>& mass, std::vector<Kin>& kin) const {
-    const auto strides = G_.strides();
+  // The nodal velocities v_n (set from p_n / m_n) carried to their nodes with the spin; position(n)
+  // is node n's position (the stepper's node_position).
+  template <class Kin, class Position>
+  void carry(const std::vector<double>& mass, std::vector<Kin>& kin, Position&& position) const {
     const std::size_t nn = mass.size();
 #pragma omp parallel for schedule(static) if (nn > 65536 && omp_get_max_threads() > 1)
     for (std::size_t n = 0; n < nn; ++n) {
       if (!(mass[n] > 0.0) || held_[n]) continue;
-      std::array<int, Dim> ijk;
-      for (int d = 0; d < Dim; ++d) ijk[d] = static_cast<int>((n / strides[d]) % G_.nodes[d]);
-      const V r = G_.position(ijk) - ref_ - moment_[n] / mass[n];  // node less mass centre
+      const V r = position(static_cast<int64_t>(n)) - ref_ - moment_[n] / mass[n];  // node less mass centre
       if constexpr (Dim == 2) kin[n].v += spin_ * V(-r.y(), r.x());
       else kin[n].v += spin_.cross(r);
     }
