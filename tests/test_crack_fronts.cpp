@@ -153,8 +153,9 @@ TEST(FrontCurvature, IsOneOverTheRadiusOfAPennyCracksFrontAndZeroOnAStraightOne)
 TEST(CrackFrontJ, ThroughCrackedSlabGivesThePlaneStrainDcbJAtEveryFrontNode) {
   const double end = 0.1;
   json s2 = test::dcb_slab_scene(2, end), s3 = test::dcb_slab_scene(3, end);
-  s2["crack_tips"] = json::object();
-  s3["crack_tips"] = json::object();
+  // The same contour in both (the 2D default is 4 cells with eq. 33, the 3D one 2 cells with eq. 32).
+  s2["crack_tips"] = {{"radius", 2}, {"volume_term", false}};
+  s3["crack_tips"] = {{"radius", 2}, {"volume_term", false}};
   Model<2> m2 = build_model<2>(s2);
   Model<3> m3 = build_model<3>(s3);
   ASSERT_TRUE(m3.crack_tips.has_value());

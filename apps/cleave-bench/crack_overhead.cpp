@@ -6,13 +6,15 @@
 // range of the ratios. Wall-clock time is the figure; printed beside it are the ratio of the process
 // CPU times (with one thread, insensitive to time slices lost to other processes on a shared
 // machine) and the ratio of the fastest block of each (the least disturbed by other processes).
-// Usage: cleave-bench-crack [--case dcb|rod3d|fronts|costs] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]
+// Usage: cleave-bench-crack [--case dcb|rod3d|fronts|tips|costs] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]
 // --case costs: what `cleave run` reports each part costs (core/part_costs.hpp), the DCB (2 mm cells
 // unless --cell) run to its end with its crack and J/K at the tip, and without the crack; exits 1
 // unless the uncracked run's crack fields, contact and J/K parts recorded no scope and no time.
 // --case fronts: the cost of evaluating J and K at every front node (crack_tips in 3D, issue 17) against
 // one step, the rod at 3 mm cells (480 000 particles) stepped 40 steps into its loading, then a step and
 // an evaluation alternately (which first alternates too), R = 10 repetitions.
+// --case tips: the same for the 2D tip of the DCB (0.5 mm cells unless --cell, 57 600 particles) with each
+// contour setting of docs/validation.md's "The defaults", R = 20 repetitions each.
 // --case rod3d: the same for 3D cracks, the quarter rod of seed 000 §4.1 (data/scenes/rod_elliptical_crack.json)
 // at 2.5 mm cells, 829 440 particles, 20 repetitions.
 // (dcb defaults: 0.25 mm cells = 230 400 particles, blocks of 2 steps, 150 repetitions, after 5 warm-up
@@ -84,12 +86,13 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-// --case fronts: an evaluation of every front node against a step, alternating.
-int bench_fronts(const nlohmann::json& scene, int reps) {
-  Model<3> m = build_model<3>(scene);
-  auto stepper = make_stepper<3>(m);
-  for (int i = 0; i < 40; ++i) stepper->step();  // the load reaches the crack (in 40 steps at 3 mm)
-  std::size_t nodes = 0;
+// A step and an evaluation alternately (which goes first alternates too): per repetition the two
+// times in ms; returns the medians and the evaluation / step ratios' median, min and max.
+struct Alternation {
+  double step_ms, eval_ms, ratio, lo, hi;
+};
+template <class Step, class Eval>
+Alternation alternate(int reps, Step&& step, Eval&& eval, const char* what) {
   std::vector<double> step_ms, eval_ms, ratio;
   using clock = std::chrono::steady_clock;
   const auto ms = [](clock::time_point a, clock::time_point b) { return 1e3 * std::chrono::duration<double>(b - a).count(); };
@@ -97,22 +100,53 @@ int bench_fronts(const nlohmann::json& scene, int reps) {
     double s = 0, e = 0;
     for (int k = 0; k < 2; ++k) {
       const auto t0 = clock::now();
-      if ((i + k) % 2 == 0) {
-        stepper->step();
-        s = ms(t0, clock::now());
-      } else {
-        nodes = stepper->crack_front_parameters(*m.crack_tips).size();
-        e = ms(t0, clock::now());
-      }
+      if ((i + k) % 2 == 0) step(), s = ms(t0, clock::now());
+      else eval(), e = ms(t0, clock::now());
     }
     step_ms.push_back(s), eval_ms.push_back(e), ratio.push_back(e / s);
-    std::printf("rep %d: step %.1f ms, evaluation of %zu front nodes %.1f ms, ratio %.3f\n", i + 1, s, nodes, e, e / s);
+    std::printf("rep %d: step %.2f ms, %s %.2f ms, ratio %.3f\n", i + 1, s, what, e, e / s);
   }
+  return {median(step_ms), median(eval_ms), median(ratio), *std::min_element(ratio.begin(), ratio.end()),
+          *std::max_element(ratio.begin(), ratio.end())};
+}
+
+// --case fronts: an evaluation of every front node against a step, alternating.
+int bench_fronts(const nlohmann::json& scene, int reps) {
+  Model<3> m = build_model<3>(scene);
+  auto stepper = make_stepper<3>(m);
+  for (int i = 0; i < 40; ++i) stepper->step();  // the load reaches the crack (in 40 steps at 3 mm)
+  std::size_t nodes = 0;
+  const Alternation a = alternate(reps, [&] { stepper->step(); },
+                                  [&] { nodes = stepper->crack_front_parameters(*m.crack_tips).size(); },
+                                  "evaluation of the front nodes");
   std::printf("rod (3D, elliptical crack), %zu particles, %d threads, %zu front nodes: step %.1f ms, evaluation %.1f ms "
               "(%.2f ms per node), evaluation / step %.1f %% (per-rep range %.1f ... %.1f %%)\n",
-              m.particles.size(), omp_get_max_threads(), nodes, median(step_ms), median(eval_ms),
-              median(eval_ms) / double(std::max<std::size_t>(nodes, 1)), 100 * median(ratio),
-              100 * *std::min_element(ratio.begin(), ratio.end()), 100 * *std::max_element(ratio.begin(), ratio.end()));
+              m.particles.size(), omp_get_max_threads(), nodes, a.step_ms, a.eval_ms,
+              a.eval_ms / double(std::max<std::size_t>(nodes, 1)), 100 * a.ratio, 100 * a.lo, 100 * a.hi);
+  return 0;
+}
+
+// --case tips: J and K at the DCB's tip with each contour setting (2D crack_tips: the 2-cell circle
+// with eq. 32, the old default; 4 cells with eq. 32; the default, 4 cells with eq. 33; 6 cells with
+// eq. 33) against one step, alternating, 100 steps into the loading.
+int bench_tips(const nlohmann::json& scene, int reps) {
+  Model<2> m = build_model<2>(scene);
+  auto stepper = make_stepper<2>(m);
+  for (int i = 0; i < 100; ++i) stepper->step();
+  struct Setting {
+    double radius;
+    bool volume_term;
+  };
+  for (const Setting& c : {Setting{2, false}, Setting{4, false}, Setting{4, true}, Setting{6, true}}) {
+    crack::TipSettings ts;
+    ts.radius = c.radius, ts.volume_term = c.volume_term;
+    const Alternation a = alternate(reps, [&] { stepper->step(); }, [&] { stepper->crack_tip_parameters(ts); },
+                                    "J and K at the tip");
+    std::printf("DCB (2D), %zu particles, %d threads, %g-cell circle, eq. %d: step %.2f ms, evaluation %.3f ms, "
+                "evaluation / step %.2f %% (per-rep range %.2f ... %.2f %%)\n",
+                m.particles.size(), omp_get_max_threads(), c.radius, c.volume_term ? 33 : 32, a.step_ms, a.eval_ms,
+                100 * a.ratio, 100 * a.lo, 100 * a.hi);
+  }
   return 0;
 }
 
@@ -173,8 +207,8 @@ int main(int argc, char** argv) {
     else if (a == "--null") null_test = true;
     else ok = false;
     if (!ok || (!only.empty() && only != "cracked" && only != "uncracked") ||
-        (which != "dcb" && which != "rod3d" && which != "fronts" && which != "costs")) {
-      std::fprintf(stderr, "usage: cleave-bench-crack [--case dcb|rod3d|fronts|costs] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]\n");
+        (which != "dcb" && which != "rod3d" && which != "fronts" && which != "tips" && which != "costs")) {
+      std::fprintf(stderr, "usage: cleave-bench-crack [--case dcb|rod3d|fronts|tips|costs] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]\n");
       return a == "--help" ? 0 : 2;
     }
   }
@@ -191,6 +225,11 @@ int main(int argc, char** argv) {
     return bench<3>("rod (3D, elliptical crack)", scene, steps, reps > 0 ? reps : 20, only, null_test);
   }
   nlohmann::json scene = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");
+  if (which == "tips") {
+    scene["resolution"] = cell > 0 ? cell : 0.5;
+    scene["cracks"][0]["segment_length"] = scene["resolution"];
+    return bench_tips(scene, reps > 0 ? reps : 20);
+  }
   if (which == "costs") {
     if (cell > 0) scene["resolution"] = cell;
     scene["crack_tips"] = nlohmann::json::object();  // J and K at the tip, at every global.csv row
