@@ -1,6 +1,6 @@
 // Doubts that are not errors reach the user as warnings: a strong particle-mass contrast between
-// bodies with linear shape functions (the beam impact is unstable at CFL 0.5 that way), and bodies
-// that overlap.
+// bodies with linear shape functions (the beam impact is unstable at CFL 0.5 that way), bodies
+// that overlap, and crack contact detected by nodal volume in a damped run.
 #include <gtest/gtest.h>
 
 #include "libmpm/mpm/mpm_scene.hpp"
@@ -38,6 +38,22 @@ TEST(SceneWarnings, TwoBodiesThatOverlapAreNamedInAWarning) {
   s["bodies"][1]["shape"] = {{"type", "rectangle"}, {"min", {0.1, 0}}, {"max", {0.2, 0.05}}};
   EXPECT_TRUE(build_model<2>(s).warnings.empty());
   EXPECT_TRUE(build_model<2>(load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/five_disks.json")).warnings.empty());
+}
+
+// Crack contact detected by nodal volume (seed 002, the default) in a damped or static run ratchets the
+// faces open (the static DCB's J +25 %, docs/validation.md): a warning per crack names the key and the
+// cure. Undamped runs (impact, where volume detection keeps its energy) get none.
+TEST(SceneWarnings, VolumeDetectionOfACrackInADampedRunIsNamedInAWarning) {
+  nlohmann::json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/dcb_crack.json");
+  EXPECT_TRUE(build_model<2>(s).warnings.empty());  // displacement detection, as shipped
+  s["cracks"][0].erase("contact");                    // the default: frictionless, volume
+  const Model<2> dcb = build_model<2>(s);
+  ASSERT_EQ(dcb.warnings.size(), 1u);
+  for (const char* word : {"cracks[0].contact.detection", "damped run", "crack 'midplane'", "\"displacement\""})
+    EXPECT_NE(dcb.warnings[0].find(word), std::string::npos) << word << " missing in: " << dcb.warnings[0];
+  s["cracks"][0]["contact"] = {{"law", "none"}};  // no contact: nothing to detect
+  EXPECT_TRUE(build_model<2>(s).warnings.empty());
+  EXPECT_TRUE(build_model<2>(load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/colliding_disks.json")).warnings.empty());
 }
 
 }  // namespace

@@ -341,6 +341,18 @@ void read_cracks(const json& scene, double length, Model<Dim>& m) {
 }
 
 template <int Dim>
+void warn_volume_detection_when_slow(Model<Dim>& m) {
+  if (!(m.damping > 0.0 || m.static_tolerance > 0.0)) return;
+  for (const auto& c : m.cracks)
+    if (c.detection == crack::Detection::Volume && c.contact_law != crack::ContactLaw::None)
+      m.warnings.push_back("cracks[" + std::to_string(c.id) + "].contact.detection: \"volume\" (the default) in a " +
+                           (m.static_tolerance > 0.0 ? "static" : "damped") + " run ratchets crack '" + c.name +
+                           "' open: it cannot tell faces open by a small part of a cell from closed ones, so small "
+                           "oscillations open the faces and contact stops them closing (static DCB: J +25 %); give "
+                           "\"detection\": \"displacement\" (docs/scenes.md, \"Choosing the detection\")");
+}
+
+template <int Dim>
 crack::TipSettings read_contour_settings(const json& scene, Model<Dim>& m, double time_scale,
                                          std::initializer_list<const char*> more_keys) {
   std::vector<const char*> keys = {"interval", "contour", "radius", "points", "volume_term"};
@@ -398,6 +410,8 @@ template void read_cracks<2>(const json&, double, Model<2>&);
 template void read_cracks<3>(const json&, double, Model<3>&);
 template void read_crack_tips<2>(const json&, const UnitSystem&, Model<2>&);
 template void read_crack_tips<3>(const json&, const UnitSystem&, Model<3>&);
+template void warn_volume_detection_when_slow<2>(Model<2>&);
+template void warn_volume_detection_when_slow<3>(Model<3>&);
 template crack::TipSettings read_contour_settings<2>(const json&, Model<2>&, double, std::initializer_list<const char*>);
 template crack::TipSettings read_contour_settings<3>(const json&, Model<3>&, double, std::initializer_list<const char*>);
 

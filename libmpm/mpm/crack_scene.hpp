@@ -23,6 +23,11 @@ void read_cracks(const nlohmann::json& scene, double length, Model<Dim>& m);
 template <int Dim>
 void read_crack_tips(const nlohmann::json& scene, const UnitSystem& units, Model<Dim>& m);
 
+// A warning per crack that detects contact by nodal volume in a damped or static run (the damping
+// and static settings read), where that detection ratchets the faces open.
+template <int Dim>
+void warn_volume_detection_when_slow(Model<Dim>& m);
+
 // The keys of "crack_tips" common to 2D and 3D (interval, contour, radius, points, volume_term),
 // with more_keys also allowed (read by the caller); checks that the scene has cracks.
 template <int Dim>

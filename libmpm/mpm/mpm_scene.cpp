@@ -369,6 +369,7 @@ Model<Dim> build_model(const json& scene) {
   // --- damping, time, output (shared sections) ----------------------------------------------------
   m.damping = scene::read_damping(scene, units);
   m.static_tolerance = scene::read_static(scene, m.damping);
+  if (top.has("cracks")) warn_volume_detection_when_slow(m);
   {
     double cmax = 0.0, vmax = 0.0;
     for (const auto& b : m.bodies) cmax = std::max(cmax, m.materials[b.material]->wave_speed());
