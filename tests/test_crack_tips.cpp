@@ -460,6 +460,67 @@ TEST(CrackTipDcb, ACrackEndingHalfACellShortOfTheLoadedEdgeCutsThroughLikeOneGiv
   EXPECT_LT(joined.first, 0.1 * through.first);
 }
 
+// The DCB of dcb_crack.json turned by deg degrees about the origin (the body as a polygon, the crack
+// turned with it), each arm end loaded by its 0.4 mN turned with the body (the total force spread over
+// the free -x faces of the particles of a box round the arm's end face), damped to static; J and K
+// at the tip with the scene's default contour (4 cells, eq. 33).
+crack::TipRecord turned_dcb(double deg, double cell = 2) {
+  const double th = deg * kPi / 180, c = std::cos(th), sn = std::sin(th);
+  auto turn = [&](double x, double y) { return json::array({c * x - sn * y, sn * x + c * y}); };
+  json s = scene("dcb_crack.json");
+  s["units"]["force"] = "N";
+  s["bodies"][0]["shape"] = {{"type", "polygon"}, {"points", {turn(0, -18), turn(100, -18), turn(100, 18), turn(0, 18)}}};
+  s["cracks"][0].erase("from"), s["cracks"][0].erase("to"), s["cracks"][0].erase("segment_length");
+  json pts = json::array();
+  for (int k = 0; k <= 26; ++k) pts.push_back(turn(-2 + 2 * k, 0));  // (a crack point every 2 mm)
+  s["cracks"][0]["points"] = pts;
+  s["resolution"] = cell;
+  if (deg != 0) s["grid"] = {{"min", {-15, -22}}, {"max", {105, 74}}};
+  else if (cell != 2) s["grid"] = {{"min", {-5 - cell / 2, -22}}, {"max", {105 - cell / 2, 22}}};  // the tip between nodes
+  json loads = json::array();
+  for (int side : {1, -1}) {
+    const json a = turn(0, side * 1.0), b = turn(0, side * 17.0);
+    const double x0 = std::min(a[0].get<double>(), b[0].get<double>()) - 1.5, x1 = std::max(a[0].get<double>(), b[0].get<double>()) + 1.5;
+    const double y0 = std::min(a[1].get<double>(), b[1].get<double>()), y1 = std::max(a[1].get<double>(), b[1].get<double>());
+    loads.push_back({{"type", "traction"}, {"body", "dcb"}, {"face", "-x"}, {"region", {{"min", {x0, y0}}, {"max", {x1, y1}}}},
+                     {"force", {-side * 0.4e-3 * sn, side * 0.4e-3 * c}}, {"rise_time", 0.05}});
+  }
+  s["loads"] = loads;
+  s["crack_tips"] = json::object();
+  Model<2> m = build_model<2>(s);
+  EXPECT_EQ(m.crack_tips->radius, 4.0);
+  auto st = make_stepper<2>(m);
+  while (st->time() < m.end_time - 1e-9 * m.dt) EXPECT_FALSE(st->step());
+  const auto t = st->crack_tip_parameters(*m.crack_tips);
+  EXPECT_EQ(t.size(), 1u);
+  return t.empty() ? crack::TipRecord{} : t[0];
+}
+
+// Issue 14: the DCB turned by 30 degrees off the grid's axes, at the default settings, against the
+// same DCB on the axes: K_II / K_I below 1 % (the loading is symmetric about the crack, K_II = 0),
+// and the same J within 2 % (the issue's criterion for a spinning DCB, here for a turned one).
+// MISSED, so out of the suite (docs/validation.md, "The defaults"): J -0.08 %, but K_II / K_I -3.7 %
+// at 2 mm and +3.8 % at 1 mm cells (J2 / J1 +5.1 and -9.2 %: the contour's J2 finds the same K_II);
+// loading boxes of 1-17, 5-13 or 9-17 mm along the end face change it by 0.3 points, and carrying each
+// field's displacement from its mass centre to the node (a trial) by 0.5. Where the turned crack's
+// tip leaves its nodes cut differs for the two arms (validation 4's mechanism).
+TEST(CrackTipDcb, DISABLED_TurnedThirtyDegreesOffTheGridKeepsItsJAndHasNoKII) {
+  const crack::TipRecord on = turned_dcb(0), off = turned_dcb(30);
+  std::printf("DCB on the grid's axes: J %.6g J/m^2, KI %.5g, KII %.4g (KII/KI %+.3f %%); turned 30 degrees: J %.6g "
+              "(%+.2f %%), KI %.5g, KII %.4g (KII/KI %+.3f %%)\n",
+              on.J1, on.KI, on.KII, 100 * on.KII / on.KI, off.J1, 100 * (off.J1 / on.J1 - 1), off.KI, off.KII,
+              100 * off.KII / off.KI);
+  std::printf("J2: on the axes %.4g, turned %.4g J/m^2 (J2 / J1 %+.3f %%)\n", on.J2, off.J2, 100 * off.J2 / off.J1);
+  if (std::getenv("CLEAVE_TURNED_DCB_FINE")) {  // the same at 1 mm cells (about a minute)
+    const crack::TipRecord on1 = turned_dcb(0, 1), off1 = turned_dcb(30, 1);
+    std::printf("1 mm cells: on the axes J %.6g, KII/KI %+.3f %%; turned J %.6g (%+.2f %%), KII/KI %+.3f %%, J2/J1 %+.3f %%\n",
+                on1.J1, 100 * on1.KII / on1.KI, off1.J1, 100 * (off1.J1 / on1.J1 - 1), 100 * off1.KII / off1.KI,
+                100 * off1.J2 / off1.J1);
+  }
+  EXPECT_LT(std::fabs(off.KII / off.KI), 0.01);
+  EXPECT_NEAR(off.J1 / on.J1, 1.0, 0.02);
+}
+
 // Validation 2. The scene's 2 mm cells put 9 cells across an arm: at the default 2-cell contour J
 // is +5.9 % above beam theory and +4.7 % above the compliance derivative (the near-tip field of
 // the discrete solution; J converges to the compliance derivative as the contour grows: +2.2 % at
