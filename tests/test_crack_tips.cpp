@@ -290,7 +290,8 @@ TEST(CrackTipScene, ReadsTheKeyAndRejectsBadValues) {
 
 // 2D defaults (docs/validation.md, "The defaults"): a 4-cell circle with eq. 33; where that does not fit
 // round a tip (here a crack 3 cells long, whose other end would lie inside it) the default shrinks to
-// what fits, a cell inside the far end, and says so; a radius the scene gives is kept, with a warning.
+// what fits, a cell inside the far end, and says so; a radius the scene gives, or a default that cannot
+// shrink to a cell, is kept, with a warning.
 TEST(CrackTipScene, TheDefaultContourIsFourCellsWithTheVolumeTermAndShrinksToFitAShortCrack) {
   Model<2> m = build_model<2>(small_cracked_plate());
   EXPECT_EQ(m.crack_tips->radius, 4.0);
@@ -308,6 +309,13 @@ TEST(CrackTipScene, TheDefaultContourIsFourCellsWithTheVolumeTermAndShrinksToFit
   m = build_model<2>(s);
   EXPECT_EQ(m.crack_tips->radius, 3.0);
   ASSERT_EQ(m.warnings.size(), 2u);  // one per tip
+  EXPECT_NE(m.warnings[0].find("reaches within a cell of the crack's other end"), std::string::npos) << m.warnings[0];
+  // Shorter than two cells: no contour of a cell or more fits, the default stays, and that is said too.
+  s["crack_tips"].erase("radius");
+  s["cracks"][0] = {{"name", "tiny"}, {"from", {-0.75, 0}}, {"to", {0.75, 0}}, {"segment_length", 0.5}};
+  m = build_model<2>(s);
+  EXPECT_EQ(m.crack_tips->radius, 4.0);
+  ASSERT_EQ(m.warnings.size(), 2u);
   EXPECT_NE(m.warnings[0].find("reaches within a cell of the crack's other end"), std::string::npos) << m.warnings[0];
 }
 

@@ -18,16 +18,10 @@
 #include "libmpm/method/describe.hpp"
 #include "libmpm/mpm/crack_front_scene.hpp"
 #include "libmpm/mpm/material_probe.hpp"
+#include "libmpm/scene/sections.hpp"
 
 namespace cleave {
 namespace {
-
-// A radius in cells as a scene would write it (4, 2.75).
-std::string format_number(double x) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", x);
-  return b;
-}
 
 using nlohmann::json;
 
@@ -184,9 +178,14 @@ void warn_contour_meets_cracks(const Model<2>& m, const crack::TipSettings& s, c
 // The largest contour radius (cells) that fits round the tip of `end`: the contour, with the nodes it
 // interpolates from (a cell beyond it), inside the grid, and the crack's far end a cell outside it (so
 // that the contour meets the tip's own crack, and no other tip lies inside it).
+// The contour's farthest point from the tip per unit radius: 1 (circle) or sqrt 2 (the square's corner).
+double corner_factor(const crack::TipSettings& s) {
+  return s.contour == crack::TipSettings::Contour::Circle ? 1.0 : std::sqrt(2.0);
+}
+
 double largest_fitting_radius(const Model<2>& m, const crack::TipSettings& s, const crack::Crack2D& c, int end) {
   const double h = m.grid.h;
-  const double corner = s.contour == crack::TipSettings::Contour::Circle ? 1.0 : std::sqrt(2.0);
+  const double corner = corner_factor(s);
   const Vec<2> x = crack::tip_frame(c, end).tip;
   const Vec<2> room = (x - m.grid.origin).cwiseMin(m.grid.upper() - x);
   const double in_grid = (room.minCoeff() - h) / (corner * h);
@@ -200,7 +199,8 @@ crack::TipSettings read_tip_settings(const json& scene, Model<2>& m, double time
   const bool default_radius = !scene["crack_tips"].contains("radius");
   const double h = m.grid.h;
   // The default radius shrinks where it does not fit (a short crack, a tip near the grid's edge),
-  // to no less than a cell, and says so; a radius the scene gives is kept or refused.
+  // to no less than a cell, and says so; a radius the scene gives, or a default that cannot shrink
+  // that far, is kept (with a warning below) or refused.
   if (default_radius) {
     double fit = s.radius;
     std::string where;
@@ -211,14 +211,14 @@ crack::TipSettings read_tip_settings(const json& scene, Model<2>& m, double time
           if (r < fit) fit = r, where = std::string(end ? "end" : "start") + " tip of crack '" + c.name + "'";
         }
     if (fit < s.radius && fit >= 1.0) {
-      warnings.push_back("crack_tips.radius: the default " + format_number(s.radius) + "-cell contour does not fit round the " +
-                         where + " (the grid's edge or the crack's other end is too near); " + format_number(fit) +
+      warnings.push_back("crack_tips.radius: the default " + scene::fmt(s.radius) + "-cell contour does not fit round the " +
+                         where + " (the grid's edge or the crack's other end is too near); " + scene::fmt(fit) +
                          " cells used (give crack_tips.radius to choose)");
       s.radius = fit;
     }
   }
   // Every contour, with the nodes it interpolates from, must lie inside the grid.
-  const double extent = s.radius * h * (s.contour == crack::TipSettings::Contour::Circle ? 1.0 : std::sqrt(2.0)) + h;
+  const double extent = s.radius * h * corner_factor(s) + h;
   bool any = false;
   for (const auto& c : m.cracks)
     for (int end = 0; end < 2; ++end) {
@@ -228,7 +228,7 @@ crack::TipSettings read_tip_settings(const json& scene, Model<2>& m, double time
       if ((x.array() - extent < m.grid.origin.array()).any() || (x.array() + extent > m.grid.upper().array()).any())
         throw SceneError("crack_tips.radius", "the contour around the " + std::string(end ? "end" : "start") +
                                                   " tip of crack '" + c.name + "' leaves the grid; enlarge the grid");
-      if (!default_radius && largest_fitting_radius(m, s, c, end) < s.radius)
+      if (largest_fitting_radius(m, s, c, end) < s.radius)  // a given radius, or a default that could not shrink
         warnings.push_back("crack_tips: the contour around the " + std::string(end ? "end" : "start") + " tip of crack '" +
                            c.name + "' reaches within a cell of the crack's other end; J there is not that of one tip "
                            "(use a smaller crack_tips.radius)");
@@ -388,7 +388,7 @@ crack::TipSettings read_contour_settings(const json& scene, Model<Dim>& m, doubl
   s.radius = r.positive_or("radius", default_radius);
   if (s.radius < 1.0)
     throw SceneError(r.at("radius"), "at least 1 cell (the contour must reach past the tip's own cell; default " +
-                                         format_number(default_radius) + ")");
+                                         scene::fmt(default_radius) + ")");
   // 16 suffice on the circle (seed 000); the square's corners need 32 for the same accuracy.
   s.points = r.integer_or("points", s.contour == crack::TipSettings::Contour::Circle ? 16 : 32, 16, 100000);
   if (r.has("volume_term")) {
