@@ -41,15 +41,9 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   const auto& G = m.grid;
   const double h = G.h, inv_h = 1.0 / h;
   const auto stride = G.strides();
-  const auto node_ijk = [&](int64_t n) {
-    std::array<int64_t, 3> ijk;
-    for (int d = 0; d < 3; ++d) ijk[d] = n / static_cast<int64_t>(stride[d]), n %= static_cast<int64_t>(stride[d]);
-    return ijk;
-  };
-  const auto node_pos = [&](int64_t n) {
-    const auto ijk = node_ijk(n);
-    return V(G.origin.x() + h * ijk[0], G.origin.y() + h * ijk[1], G.origin.z() + h * ijk[2]);
-  };
+  const detail::NodeIndexing node_indexing(G);
+  const auto node_ijk = [&](int64_t n) { return node_indexing.ijk(n); };
+  const auto node_pos = [&](int64_t n) { return node_indexing.position(n); };
   const bool circle = ts.contour == crack::TipSettings::Contour::Circle;
   const double contour_extent = ts.radius * h * (circle ? 1.0 : std::sqrt(2.0));
   const double cod_distance = std::max(ts.radius, kCodCells) * h;
@@ -80,7 +74,13 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     if (!jobs.empty()) bins.build(G, P.x, lo - margin, hi + margin);
   }
   // Every particle-node line's field key, here and in the shared sums, from one binning of the triangles.
-  const detail::TriangleBins tris(m);
+  std::array<int64_t, 3> tri_lo = bins.lo, tri_n = bins.n;  // the particles' box and two cells about it
+  for (int d = 0; d < 3; ++d) {
+    const int64_t cells = std::max(1, G.nodes[d] - 1);
+    const int64_t a = std::max<int64_t>(0, bins.lo[d] - 2), b = std::min<int64_t>(cells - 1, bins.lo[d] + bins.n[d] + 1);
+    tri_lo[d] = a, tri_n[d] = std::max<int64_t>(1, b - a + 1);
+  }
+  const detail::TriangleBins tris(m, tri_lo, tri_n);
   std::vector<crack::FrontRecord> out(jobs.size());
   std::vector<uint8_t> done(jobs.size(), 0);
   std::vector<std::string> failure(jobs.size());
@@ -89,6 +89,15 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   // then eq. 36's sums at all of them, once (a front node's neighbours, half a cell away, read
   // mostly the same nodes); the second pass evaluates each front node from those sums.
   std::vector<std::vector<int64_t>> need_of(jobs.size());
+  // What the first pass finds for each front node and the second uses.
+  struct State {
+    std::vector<crack::FrontContourPoint> contour;
+    V up, down;            // the opening probes
+    bool have_cod = false;  // (a crack point behind the node was found for them)
+    std::vector<std::pair<int32_t, double>> inside;  // eq. 33's particles and their slab weights
+    double slab_material = 0.0;  // the slab's share held by particles and their images
+  };
+  std::vector<State> state(jobs.size());
   detail::NodeSums shared;
   for (int pass = 0; pass < 2; ++pass) {
   if (pass == 1) shared.build<SF>(m, bins, tris, need_of);
@@ -96,6 +105,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   for (std::size_t j = 0; j < jobs.size(); ++j) {
     try {
     const Job job = jobs[j];
+    detail::TriangleBins::Candidates cand;  // the crack triangles near a point, for its lines' keys
     const auto& c = m.cracks[job.crack];
     const crack::FrontFrame f = crack::front_frame(c, job.front, job.node);
     crack::FrontRecord& rec = out[j];
@@ -104,33 +114,24 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     rec.s = crack::front_arc_lengths(c, job.front)[job.node];
     if (!c.fronts[job.front].flags.empty()) rec.flag = c.fronts[job.front].flags[job.node];
 
+    if (pass == 0) {
+    State& S = state[j];
     // The node's own crack's triangles within reach (their boxes meet the box about the node), for the
     // crack points nearest to the contour's start and the opening probes.
-    struct Local {
-      std::vector<int32_t> ids;
-      std::vector<V> lo, hi;
-    } local;
-    for (std::size_t t = 0; t < c.simplices.size(); ++t) {
-      const auto& T = c.simplices[t];
-      const V lo = c.points[T[0]].cwiseMin(c.points[T[1]]).cwiseMin(c.points[T[2]]);
-      const V hi = c.points[T[0]].cwiseMax(c.points[T[1]]).cwiseMax(c.points[T[2]]);
-      if (((hi - f.x).array() >= -reach).all() && ((lo - f.x).array() <= reach).all()) {
-        local.ids.push_back(static_cast<int32_t>(t));
-        local.lo.push_back(lo), local.hi.push_back(hi);
-      }
-    }
-    std::vector<int32_t> key_scratch;
-    const auto key_of = [&](const V& x, const V& xn) { return tris.key(x, xn, key_scratch); };
+    const auto &tlo = tris.box_lo(c.id), &thi = tris.box_hi(c.id);
+    std::vector<int32_t> local;
+    for (std::size_t t = 0; t < c.simplices.size(); ++t)
+      if (((thi[t] - f.x).array() >= -reach).all() && ((tlo[t] - f.x).array() <= reach).all())
+        local.push_back(static_cast<int32_t>(t));
 
     // The crack's surface point nearest to x (among the node's local triangles) and the normal of
     // its triangle.
     const auto nearest_on_crack = [&](const V& x, V& q, V& normal) {
       double best = INFINITY;
-      const Local& L = local;
-      for (std::size_t k = 0; k < L.ids.size(); ++k) {
+      for (const int32_t id : local) {
         // No point of a triangle whose box is farther than the best so far can be nearer.
-        if ((x - x.cwiseMax(L.lo[k]).cwiseMin(L.hi[k])).squaredNorm() >= best) continue;
-        const auto& T = c.simplices[L.ids[k]];
+        if ((x - x.cwiseMax(tlo[id]).cwiseMin(thi[id])).squaredNorm() >= best) continue;
+        const auto& T = c.simplices[id];
         const V a = c.points[T[0]], b = c.points[T[1]], cc = c.points[T[2]];
         V nrm = (b - a).cross(cc - a);
         if (!(nrm.squaredNorm() > 0.0)) continue;
@@ -163,12 +164,12 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
         if (d.norm() > 0.1 * h) theta0 = std::atan2(d.dot(f.e2), d.dot(f.e1));
       }
     }
-    const auto contour = crack::front_contour_points(f, ts, h, theta0);
+    S.contour = crack::front_contour_points(f, ts, h, theta0);
     // Opening probes: each face's field just off the crack, cod_distance behind the node.
     V cod_point = f.x - cod_distance * f.e1, cod_normal = f.e2;
-    const bool have_cod_point = nearest_on_crack(cod_point, cod_point, cod_normal);
+    S.have_cod = nearest_on_crack(cod_point, cod_point, cod_normal);
     const double probe = 1e-3 * h;
-    const V up = cod_point + probe * cod_normal, down = cod_point - probe * cod_normal;
+    S.up = cod_point + probe * cod_normal, S.down = cod_point - probe * cod_normal;
 
     // The nodes whose sums the contour needs: those of the cells of its points, of the probes and
     // of the front node (sorted, unique).
@@ -183,24 +184,25 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
         need.push_back((i[0] + (k & 1)) * int64_t(stride[0]) + (i[1] + ((k >> 1) & 1)) * int64_t(stride[1]) +
                        (i[2] + ((k >> 2) & 1)));
     };
-    for (const auto& cp : contour) add_cell_nodes(cp.x);
-    add_cell_nodes(up), add_cell_nodes(down), add_cell_nodes(f.x);
+    for (const auto& cp : S.contour) add_cell_nodes(cp.x);
+    add_cell_nodes(S.up), add_cell_nodes(S.down), add_cell_nodes(f.x);
 
     // The particles inside the contour, projected on its plane, within a slab of one cell along the
     // front (each weighted by the part of its extent in the slab, per unit length): eq. 33's volume
     // and the out-of-plane term's area. Symmetry planes normal to the front within the slab (a node
     // on one, or a slab one cell thick between two) mirror the material: its images count too (the
     // integrands are even in the distance to the plane).
-    std::vector<std::pair<int32_t, double>> inside;
     std::vector<double> mirrors;  // the planes' positions along e3 from the node
     for (const auto& [axis, position] : m.symmetry_planes) {
       const double z0 = (position - f.x[axis]) / f.e3[axis];
       if (std::fabs(f.e3[axis]) > 0.999 && std::fabs(z0) <= h) mirrors.push_back(z0);
     }
-    double slab_material = 0.0;  // the slab's share held by particles and their images
-    // (The first pass needs only the nodes of eq. 33's particles.)
-    if (ts.volume_term || (ts.out_of_plane_term && pass == 1)) {
-      const int r = static_cast<int>(std::ceil((contour_extent + h) * inv_h)) + 1;
+    if (ts.volume_term || ts.out_of_plane_term) {
+      // A particle of the slab lies within `bound` of the node: inside the contour's extent in the
+      // plane, and within a cell of it along the front (three with a mirror plane).
+      const double s3max = mirrors.empty() ? h : 3.0 * h;
+      const double bound = std::sqrt(contour_extent * contour_extent + s3max * s3max) + 1e-9 * h;
+      const int r = static_cast<int>(std::ceil(bound * inv_h));  // (cells of points within bound)
       {
         const auto [ci, cj, ck] = detail::CellBins::cell_of(G, f.x);
         for (int64_t a = ci - r; a <= ci + r; ++a)
@@ -213,19 +215,22 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
               // mirror plane is near.
               const V centre = G.origin + h * V(a + 0.5, b + 0.5, e + 0.5);
               if (mirrors.empty() && std::fabs((centre - f.x).dot(f.e3)) > 2.0 * h) continue;
+              const V corner = G.origin + h * V(a, b, e);
+              if ((f.x - f.x.cwiseMax(corner).cwiseMin(corner + V::Constant(h))).norm() >= bound) continue;
               for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
                 const int32_t p = bins.particle[q];
                 const double s3 = (P.x[p] - f.x).dot(f.e3);
                 if (mirrors.empty() && std::fabs(s3) >= h) continue;  // (particles are at most a cell wide)
+                if (!crack::inside_front_contour(f, ts, h, P.x[p])) continue;
                 const double l = std::cbrt(P.volume0[p]);
                 const auto in_slab = [&](double c) {
                   return std::max(0.0, std::min(c + 0.5 * l, 0.5 * h) - std::max(c - 0.5 * l, -0.5 * h));
                 };
                 double in = in_slab(s3);
                 for (const double z0 : mirrors) in += in_slab(2.0 * z0 - s3);
-                if (in <= 0.0 || !crack::inside_front_contour(f, ts, h, P.x[p])) continue;
-                inside.push_back({p, in / (l * h)});
-                slab_material += P.volume0[p] * in / l;
+                if (in <= 0.0) continue;
+                S.inside.push_back({p, in / (l * h)});
+                S.slab_material += P.volume0[p] * in / l;
                 if (!ts.volume_term) continue;
                 St st;
                 st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
@@ -236,10 +241,14 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     }
     std::sort(need.begin(), need.end());
     need.erase(std::unique(need.begin(), need.end()), need.end());
-    if (pass == 0) {
-      need_of[j] = std::move(need);
-      continue;
+    need_of[j] = std::move(need);
+    continue;
     }
+    const State& S = state[j];
+    const std::vector<int64_t>& need = need_of[j];
+    const auto& contour = S.contour;
+    const auto& inside = S.inside;
+    const V &up = S.up, &down = S.down;
     // need_index(n): n's position in `need`, or -1, through a dense table over the box of nodes
     // within `reach` of the front node (every node this evaluation touches lies in it).
     const int box_r = static_cast<int>(std::ceil(reach * inv_h)) + 2, box_n = 2 * box_r + 1;
@@ -266,23 +275,6 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       return b < 0 ? -1 : slot[b];
     };
 
-    // The particles whose stencils can reach a needed node, in cell order, each once: those in the
-    // cells about it (linear: the 8 cells touching the node; uGIMP, half-widths up to half a cell:
-    // within 1.5 cells, two cells below to one above).
-    constexpr int kLo = St::K == 2 ? -1 : -2, kHi = St::K == 2 ? 0 : 1;
-    std::vector<int64_t> cells;
-    for (const int64_t n : need) {
-      const auto ijk = node_ijk(n);
-      for (int a = kLo; a <= kHi; ++a)
-        for (int b = kLo; b <= kHi; ++b)
-          for (int e = kLo; e <= kHi; ++e) {
-            const int64_t i = ijk[0] + a, jj = ijk[1] + b, k = ijk[2] + e;
-            if (const int64_t cell = bins.index(i, jj, k); cell >= 0) cells.push_back(cell);
-          }
-    }
-    std::sort(cells.begin(), cells.end());
-    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-
     // The rigid motion of the material about the node (as in 2D): mean rotation and least-squares
     // spin of the particles within a cell and a half of the contour, in the slab of the contour.
     V theta = V::Zero(), omega = V::Zero();
@@ -290,33 +282,58 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     double nearest_d = INFINITY;
     {
       const double fit = contour_extent + 1.5 * h;
-      double msum = 0.0;
-      V mx = V::Zero(), mv = V::Zero(), mth = V::Zero();
       const auto in_fit = [&](int32_t p) {
         const V d = P.x[p] - f.x;
         return std::fabs(d.dot(f.e3)) <= 1.5 * h && (d - d.dot(f.e3) * f.e3).norm() <= fit;
       };
-      for (const int64_t cell : cells)
+      // The cells that can hold the fit's particles (within fit_reach of the node, and within a cell
+      // and a half of its plane: the cell's centre within that plus its half-diagonal), in cell order.
+      const double fit_reach = std::sqrt(fit * fit + 2.25 * h * h) * (1.0 + 1e-12);
+      const auto for_cells_within = [&](double reach_d, bool slab, auto&& g) {
+        const int r = static_cast<int>(std::ceil(reach_d * inv_h));
+        const auto [ci, cj, ck] = detail::CellBins::cell_of(G, f.x);
+        for (int64_t a = ci - r; a <= ci + r; ++a)
+          for (int64_t b = cj - r; b <= cj + r; ++b)
+            for (int64_t e = ck - r; e <= ck + r; ++e) {
+              const int64_t cell = bins.index(a, b, e);
+              if (cell < 0 || bins.begin[cell] == bins.begin[cell + 1]) continue;
+              const V corner = G.origin + h * V(a, b, e);
+              if (slab && std::fabs((corner + V::Constant(0.5 * h) - f.x).dot(f.e3)) > 2.37 * h) continue;
+              if ((f.x - f.x.cwiseMax(corner).cwiseMin(corner + V::Constant(h))).norm() > reach_d) continue;
+              g(cell);
+            }
+      };
+      std::vector<int32_t> fit_set;
+      double msum = 0.0;
+      V mx = V::Zero(), mv = V::Zero(), mth = V::Zero();
+      for_cells_within(fit_reach, true, [&](int64_t cell) {
         for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
           const int32_t p = bins.particle[q];
           if (const double d = (P.x[p] - f.x).norm(); d < nearest_d) nearest_d = d, nearest = p;
           if (!in_fit(p)) continue;
+          fit_set.push_back(p);
           const double mp = P.mass[p];
           msum += mp, mx += mp * P.x[p], mv += mp * P.v[p];
           if (rotations) mth += mp * P.rotation3[p];
         }
+      });
+      // (No particle in those cells: the nearest within reach.)
+      if (nearest < 0)
+        for_cells_within(reach, false, [&](int64_t cell) {
+          for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
+            const int32_t p = bins.particle[q];
+            if (const double d = (P.x[p] - f.x).norm(); d < nearest_d) nearest_d = d, nearest = p;
+          }
+        });
       if (msum > 0.0) {
         theta = mth / msum, mx /= msum, mv /= msum;
         Mat<3> inertia = Mat<3>::Zero();
         V moment = V::Zero();
-        for (const int64_t cell : cells)
-          for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
-            const int32_t p = bins.particle[q];
-            if (!in_fit(p)) continue;
-            const V r = P.x[p] - mx;
-            inertia += P.mass[p] * (r.squaredNorm() * Mat<3>::Identity() - r * r.transpose());
-            moment += P.mass[p] * r.cross(P.v[p] - mv);
-          }
+        for (const int32_t p : fit_set) {
+          const V r = P.x[p] - mx;
+          inertia += P.mass[p] * (r.squaredNorm() * Mat<3>::Identity() - r * r.transpose());
+          moment += P.mass[p] * r.cross(P.v[p] - mv);
+        }
         if (inertia.determinant() > 0.0) omega = inertia.ldlt().solve(moment);
       }
     }
@@ -393,9 +410,12 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     const auto interpolate = [&](const V& x, Point& q) {
       q = Point{};
       double wsum = 0.0;
+      std::array<int64_t, 3> cell;
+      for (int d = 0; d < 3; ++d) cell[d] = static_cast<int64_t>(std::floor((x[d] - G.origin[d]) * inv_h));
+      tris.gather_cell(cell, cand);  // (x's lines to its cell's corners)
       const bool in_grid = for_cell_nodes(x, [&](int64_t n, double w) {
         if (w == 0.0) return;
-        const Sums* s = field(n, key_of(x, node_pos(n)));
+        const Sums* s = field(n, tris.key(x, node_pos(n), cand));
         if (!s) return;
         const double k = w / s->m;
         const double kinetic = 0.5 * (s->rho_vv - 2.0 * v_tip.dot(s->rho_v) + s->rho * v_tip.squaredNorm());
@@ -422,9 +442,15 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       if (!ts.volume_term) break;  // (the list serves the out-of-plane term too)
       St st;
       st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
+      if constexpr (St::K == 2) {
+        tris.gather_cell(node_ijk(st.base), cand);  // (the particle's closed cell)
+      } else {
+        const V first = node_pos(st.base), last = first + V::Constant((St::K - 1) * h);
+        tris.gather(first.cwiseMin(P.x[p]), last.cwiseMax(P.x[p]), cand);
+      }
       Mat<3> gv = Mat<3>::Zero();
       st.for_each([&](int64_t n, double, const V& g) {
-        const Sums* s = field(n, key_of(P.x[p], node_pos(n)));
+        const Sums* s = field(n, tris.key(P.x[p], node_pos(n), cand));
         if (s) gv += (s->v / s->m) * g.transpose();
       });
       J += P.mass[p] * weight * (grad_u(p).transpose() * accel(p) - gv.transpose() * (v_rel(p) - v_tip));
@@ -450,12 +476,12 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       // The slab should be full of material (the contour's area times one cell): a free surface
       // across it leaves part of the area out.
       const double area = circle ? M_PI * ts.radius * ts.radius * h * h : 4.0 * ts.radius * ts.radius * h * h;
-      if (slab_material < 0.9 * area * h) rec.flag |= crack::kFlagContourOutside;
+      if (S.slab_material < 0.9 * area * h) rec.flag |= crack::kFlagContourOutside;
       rec.J1 -= kappa * q1, rec.J2 -= kappa * q2;
     }
 
     Point a, b;
-    if (have_cod_point && interpolate(up, a) && interpolate(down, b)) {
+    if (S.have_cod && interpolate(up, a) && interpolate(down, b)) {
       const V d = a.u - b.u;
       rec.cod_I = d.dot(f.e2), rec.cod_II = d.dot(f.e1), rec.cod_III = d.dot(f.e3);
     } else {

@@ -19,6 +19,26 @@ namespace cleave {
 
 namespace detail {
 
+// A 3D grid's linear node index taken apart: its (i, j, k) and its position.
+struct NodeIndexing {
+  explicit NodeIndexing(const GridGeometry<3>& G) : origin(G.origin), h(G.h) {
+    const auto st = G.strides();
+    for (int d = 0; d < 3; ++d) stride[d] = static_cast<int64_t>(st[d]);
+  }
+  std::array<int64_t, 3> ijk(int64_t n) const {
+    std::array<int64_t, 3> c;
+    for (int d = 0; d < 3; ++d) c[d] = n / stride[d], n %= stride[d];
+    return c;
+  }
+  Vec<3> position(int64_t n) const {
+    const auto c = ijk(n);
+    return Vec<3>(origin.x() + h * c[0], origin.y() + h * c[1], origin.z() + h * c[2]);
+  }
+  Vec<3> origin;
+  double h;
+  std::array<int64_t, 3> stride;
+};
+
 // Mass-weighted nodal sums of one velocity field at one node (eq. 36), 3D.
 struct FrontFieldSums {
   uint32_t key = 0;
@@ -42,7 +62,8 @@ struct CellBins {
   }
   static std::array<int64_t, 3> cell_of(const GridGeometry<3>& G, const Vec<3>& x) {
     std::array<int64_t, 3> c;
-    for (int d = 0; d < 3; ++d) c[d] = static_cast<int64_t>(std::floor((x[d] - G.origin[d]) / G.h));
+    const double inv_h = 1.0 / G.h;  // (as build's box test)
+    for (int d = 0; d < 3; ++d) c[d] = static_cast<int64_t>(std::floor((x[d] - G.origin[d]) * inv_h));
     return c;
   }
   // f(p) for each particle p of cell (i, j, k), in index order.
@@ -52,7 +73,9 @@ struct CellBins {
     if (c >= 0)
       for (int64_t q = begin[c]; q < begin[c + 1]; ++q) f(particle[q]);
   }
-  // The particles of x in the grid's cells that meet [box_lo, box_hi].
+  // The particles of x in the grid's cells that meet [box_lo, box_hi]. One pass over all particles
+  // in blocks, a branch-free test per particle that vectorises (the box is a small part of a large
+  // body: most particles are left out); then those kept, counted and placed by cell.
   void build(const GridGeometry<3>& G, const std::vector<Vec<3>>& x, const Vec<3>& box_lo, const Vec<3>& box_hi) {
     const auto a = cell_of(G, box_lo), b = cell_of(G, box_hi);
     for (int d = 0; d < 3; ++d) {
@@ -62,30 +85,49 @@ struct CellBins {
     }
     const int64_t total = n[0] * n[1] * n[2];
     begin.assign(total + 1, 0);
-    std::vector<int64_t> cell(x.size());
-#pragma omp parallel for schedule(static) if (x.size() > 65536)
-    for (std::size_t p = 0; p < x.size(); ++p) {
-      const auto c = cell_of(G, x[p]);
-      cell[p] = index(c[0], c[1], c[2]);
+    // In the box: lo <= (x - origin) / h < lo + n along each axis (cell_of's arithmetic).
+    double blo[3], bhi[3];
+    for (int d = 0; d < 3; ++d) blo[d] = static_cast<double>(lo[d]), bhi[d] = static_cast<double>(lo[d] + n[d]);
+    const double ox = G.origin.x(), oy = G.origin.y(), oz = G.origin.z(), inv_h = 1.0 / G.h;
+    constexpr std::size_t kBlock = 4096;
+    const std::size_t np = x.size(), blocks = (np + kBlock - 1) / kBlock;
+    std::vector<std::vector<std::pair<int32_t, int64_t>>> kept(blocks);  // (particle, cell), in particle order
+#pragma omp parallel for schedule(static) if (np > 65536)
+    for (std::size_t k = 0; k < blocks; ++k) {
+      const std::size_t p0 = k * kBlock, p1 = std::min(np, p0 + kBlock);
+      uint8_t in[kBlock];
+      int any = 0;
+      for (std::size_t p = p0; p < p1; ++p) {
+        const double u = (x[p].x() - ox) * inv_h, v = (x[p].y() - oy) * inv_h, w = (x[p].z() - oz) * inv_h;
+        const int i = (u >= blo[0]) & (u < bhi[0]) & (v >= blo[1]) & (v < bhi[1]) & (w >= blo[2]) & (w < bhi[2]);
+        in[p - p0] = static_cast<uint8_t>(i), any |= i;
+      }
+      if (!any) continue;
+      for (std::size_t p = p0; p < p1; ++p)
+        if (in[p - p0]) {
+          const auto c = cell_of(G, x[p]);
+          kept[k].push_back({static_cast<int32_t>(p), index(c[0], c[1], c[2])});
+        }
     }
-    for (std::size_t p = 0; p < x.size(); ++p)
-      if (cell[p] >= 0) ++begin[cell[p] + 1];
+    for (const auto& b : kept)
+      for (const auto& [p, c] : b) ++begin[c + 1];
     for (int64_t c = 0; c < total; ++c) begin[c + 1] += begin[c];
     particle.resize(begin[total]);
     std::vector<int64_t> next(begin.begin(), begin.end() - 1);
-    for (std::size_t p = 0; p < x.size(); ++p)
-      if (cell[p] >= 0) particle[next[cell[p]]++] = static_cast<int32_t>(p);
+    for (const auto& b : kept)
+      for (const auto& [p, c] : b) particle[next[c]++] = p;
   }
 };
 
-// The triangles of every crack binned by grid cell, each in the cells its box meets (by a hair more,
-// so that rounding cannot drop one): a triangle whose box meets a line's box is in one of the cells
-// the line's box meets, so the field key of a line from these is exact, as the stepper's.
+// The triangles of every crack binned by grid cell over a box of cells (cells lo .. lo + n - 1), each
+// in the cells its box meets (by a hair more, so that rounding cannot drop one): a triangle whose box
+// meets a line's box is in one of the cells the line's box meets, so the field key of a line inside
+// the box from these is exact, as the stepper's. (Positions outside the box are taken to its edge
+// cells: keys there are not exact.)
 class TriangleBins {
  public:
-  explicit TriangleBins(const Model<3>& m) : m_(m) {
-    const auto& G = m.grid;
-    for (int d = 0; d < 3; ++d) cells_[d] = std::max(1, G.nodes[d] - 1);
+  TriangleBins(const Model<3>& m, const std::array<int64_t, 3>& lo, const std::array<int64_t, 3>& n)
+      : m_(m), first_(lo), cells_(n) {
     lo_.resize(m.cracks.size()), hi_.resize(m.cracks.size());
     std::vector<std::array<int64_t, 6>> spans;
     begin_.assign(cells_[0] * cells_[1] * cells_[2] + 1, 0);
@@ -96,7 +138,13 @@ class TriangleBins {
         const Vec<3> hi = c.points[T[0]].cwiseMax(c.points[T[1]]).cwiseMax(c.points[T[2]]);
         lo_[c.id].push_back(lo), hi_[c.id].push_back(hi);
         std::array<int64_t, 6> sp;
-        for (int d = 0; d < 3; ++d) sp[d] = index(lo, d, -1e-9), sp[3 + d] = index(hi, d, 1e-9);
+        bool meets = true;  // the triangle's box meets the box of cells
+        for (int d = 0; d < 3; ++d) {
+          const int64_t a = unclamped(lo, d, -1e-9), b = unclamped(hi, d, 1e-9);
+          meets = meets && b >= 0 && a < cells_[d];
+          sp[d] = std::clamp<int64_t>(a, 0, cells_[d] - 1), sp[3 + d] = std::clamp<int64_t>(b, 0, cells_[d] - 1);
+        }
+        if (!meets) sp = {0, 0, 0, -1, -1, -1};  // (no cell)
         spans.push_back(sp);
         for_span(sp, [&](int64_t cell) { ++begin_[cell + 1]; });
       }
@@ -109,36 +157,97 @@ class TriangleBins {
         for_span(spans[k++], [&](int64_t cell) { entry_[next[cell]++] = {c.id, static_cast<int32_t>(t)}; });
   }
 
-  // The field key of the line x -> xn (crack_fields' key: one code per crossed crack, in crack order);
-  // ids: the caller's scratch.
-  uint32_t key(const Vec<3>& x, const Vec<3>& xn, std::vector<int32_t>& ids) const {
-    const Vec<3> lo = x.cwiseMin(xn), hi = x.cwiseMax(xn);
+  // The triangles of every crack entered in the cells that the box [lo, hi] meets, per crack sorted
+  // and unique: among them every triangle whose box meets a segment inside [lo, hi]. Gathered once
+  // for all the lines from one point (a particle to its stencil's nodes), with that point's side of
+  // each triangle kept as it is first needed.
+  struct Candidates {
+    std::vector<int32_t> begin;  // per crack + 1: the crack's range in ids
+    std::vector<int32_t> ids;    // triangle ids
+    std::vector<int8_t> side;    // the point's volume_sign per candidate (kUnknown: not computed yet)
+    std::vector<int32_t> line_ids, line_at;  // scratch: one line's triangles and their candidate index
+  };
+  static constexpr int8_t kUnknown = 2;
+  void gather(const Vec<3>& lo, const Vec<3>& hi, Candidates& c) const {
     std::array<int64_t, 6> sp;
     for (int d = 0; d < 3; ++d) sp[d] = index(lo, d, 0.0), sp[3 + d] = index(hi, d, 0.0);
+    c.ids.clear(), c.begin.assign(1, 0);
+    for (const auto& o : m_.cracks) {
+      const std::size_t first = c.ids.size();
+      for_span(sp, [&](int64_t cell) {
+        for (int64_t e = begin_[cell]; e < begin_[cell + 1]; ++e)
+          if (entry_[e].first == o.id) c.ids.push_back(entry_[e].second);
+      });
+      // (One cell's entries are already in triangle order.)
+      if (sp[0] != sp[3] || sp[1] != sp[4] || sp[2] != sp[5]) {
+        std::sort(c.ids.begin() + first, c.ids.end());
+        c.ids.erase(std::unique(c.ids.begin() + first, c.ids.end()), c.ids.end());
+      }
+      c.begin.push_back(static_cast<int32_t>(c.ids.size()));
+    }
+    c.side.assign(c.ids.size(), kUnknown);
+  }
+  // The candidates of a point in the closed cell (i, j, k) for its lines to the cell's corners: the
+  // cell's own entries (a triangle whose box meets the closed cell is entered in it: the slack).
+  void gather_cell(const std::array<int64_t, 3>& ijk, Candidates& c) const {
+    c.ids.clear(), c.begin.assign(1, 0);
+    std::array<int64_t, 3> b;
+    for (int d = 0; d < 3; ++d) {
+      b[d] = ijk[d] - first_[d];
+      if (b[d] < 0 || b[d] >= cells_[d]) {  // (outside the box: its edge cells)
+        const auto& G = m_.grid;
+        const Vec<3> lo = G.origin + G.h * Vec<3>(double(ijk[0]), double(ijk[1]), double(ijk[2]));
+        return gather(lo, lo + Vec<3>::Constant(G.h), c);
+      }
+    }
+    const int64_t cell = (b[0] * cells_[1] + b[1]) * cells_[2] + b[2];
+    for (const auto& o : m_.cracks) {
+      for (int64_t e = begin_[cell]; e < begin_[cell + 1]; ++e)
+        if (entry_[e].first == o.id) c.ids.push_back(entry_[e].second);
+      c.begin.push_back(static_cast<int32_t>(c.ids.size()));
+    }
+    c.side.assign(c.ids.size(), kUnknown);
+  }
+  // The field key of the line x -> xn (crack_fields' key: one code per crossed crack, in crack order)
+  // from the candidates gathered over a box that holds the line, x the point they were gathered for:
+  // the triangles whose boxes meet the line's box, in triangle order, as the stepper tests them.
+  uint32_t key(const Vec<3>& x, const Vec<3>& xn, Candidates& c) const {
+    const Vec<3> lo = x.cwiseMin(xn), hi = x.cwiseMax(xn);
     crack::FieldKeyBuilder b;
     for (const auto& o : m_.cracks) {
-      ids.clear();
-      for_span(sp, [&](int64_t cell) {
-        for (int64_t e = begin_[cell]; e < begin_[cell + 1]; ++e) {
-          const auto [ci, t] = entry_[e];
-          if (ci == o.id && (hi_[ci][t].array() >= lo.array()).all() && (lo_[ci][t].array() <= hi.array()).all())
-            ids.push_back(t);
+      c.line_ids.clear(), c.line_at.clear();
+      for (int32_t k = c.begin[o.id]; k < c.begin[o.id + 1]; ++k) {
+        const int32_t t = c.ids[k];
+        if ((hi_[o.id][t].array() >= lo.array()).all() && (lo_[o.id][t].array() <= hi.array()).all())
+          c.line_ids.push_back(t), c.line_at.push_back(k);
+      }
+      if (c.line_ids.empty()) continue;
+      const auto point_side = [&](std::size_t k) {
+        int8_t& s = c.side[c.line_at[k]];
+        if (s == kUnknown) {
+          const auto& T = o.simplices[c.line_ids[k]];
+          s = static_cast<int8_t>(crack::volume_sign(o.points[T[0]], o.points[T[1]], o.points[T[2]], x));
         }
-      });
-      if (ids.empty()) continue;
-      std::sort(ids.begin(), ids.end());
-      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-      const crack::Side side = crack::triangle_list_crossing(o.points.data(), o.simplices.data(), ids.data(), ids.size(), x, xn);
+        return static_cast<int>(s);
+      };
+      const crack::Side side = crack::triangle_list_crossing_with(o.points.data(), o.simplices.data(), c.line_ids.data(),
+                                                                  c.line_ids.size(), x, xn, point_side);
       if (side != crack::Side::None && !b.add(o.id, side)) return crack::kFieldKeyOverflow;
     }
     return b.key();
   }
+  // The bounding boxes of crack c's triangles.
+  const std::vector<Vec<3>>& box_lo(int c) const { return lo_[c]; }
+  const std::vector<Vec<3>>& box_hi(int c) const { return hi_[c]; }
 
  private:
   // The cell index along d of x, shifted by `slack` cells before rounding down.
-  int64_t index(const Vec<3>& x, int d, double slack) const {
+  int64_t unclamped(const Vec<3>& x, int d, double slack) const {
     const auto& G = m_.grid;
-    return std::clamp<int64_t>(static_cast<int64_t>(std::floor((x[d] - G.origin[d]) / G.h + slack)), 0, cells_[d] - 1);
+    return static_cast<int64_t>(std::floor((x[d] - G.origin[d]) / G.h + slack)) - first_[d];
+  }
+  int64_t index(const Vec<3>& x, int d, double slack) const {
+    return std::clamp<int64_t>(unclamped(x, d, slack), 0, cells_[d] - 1);
   }
   template <class F>
   void for_span(const std::array<int64_t, 6>& sp, F&& f) const {
@@ -148,7 +257,7 @@ class TriangleBins {
           f((i * cells_[1] + j) * cells_[2] + k);
   }
   const Model<3>& m_;
-  std::array<int64_t, 3> cells_{};
+  std::array<int64_t, 3> first_{}, cells_{};  // the box of cells
   std::vector<int64_t> begin_;
   std::vector<std::pair<int32_t, int32_t>> entry_;  // (crack, triangle), per cell in crack and triangle order
   std::vector<std::vector<Vec<3>>> lo_, hi_;        // per crack and triangle: its box
@@ -180,58 +289,151 @@ inline Mat<3> full_tensor(const Sym<3>& s) {
 }
 
 // RawSums at a set of grid nodes, per field: each node gathers from the particles of the cells
-// around it, in cell and particle order (the same sums for any thread count).
+// around it, in cell and particle order (the same sums for any thread count). Each particle's
+// stencil, energy density and field keys (of its lines to the needed nodes) are found once, before
+// the nodes gather: a particle reaches up to N of them.
 class NodeSums {
  public:
   template <class SF>
   void build(const Model<3>& m, const CellBins& bins, const TriangleBins& tris,
              const std::vector<std::vector<int64_t>>& need_of) {
     using St = Stencil<3, SF>;
+    constexpr int K = St::K, N = St::N;
     nodes_.clear();
     for (const auto& v : need_of) nodes_.insert(nodes_.end(), v.begin(), v.end());
     std::sort(nodes_.begin(), nodes_.end());
     nodes_.erase(std::unique(nodes_.begin(), nodes_.end()), nodes_.end());
     sums_.assign(nodes_.size(), {});
+    if (nodes_.empty()) return;
     const auto& P = m.particles;
     const auto& G = m.grid;
     const double h = G.h, inv_h = 1.0 / h;
     const auto stride = G.strides();
     const bool rotations = !P.rotation3.empty();
-    constexpr int kLo = St::K == 2 ? -1 : -2, kHi = St::K == 2 ? 0 : 1;  // cells whose particles reach a node
+    constexpr int kLo = K == 2 ? -1 : -2, kHi = K == 2 ? 0 : 1;  // cells whose particles reach a node
+    const NodeIndexing indexing(G);
+    const auto ijk_of = [&](int64_t n) { return indexing.ijk(n); };
+    const auto node_x = [&](int64_t n) { return indexing.position(n); };
+
+    // The cells whose particles reach a needed node, and the particles' records at consecutive places.
+    std::vector<int64_t> record_of(bins.begin.size(), -1);  // per cell of the bins: its first record
+    std::vector<int64_t> cells;
+    for (const int64_t n : nodes_) {
+      const auto ijk = ijk_of(n);
+      for (int a = kLo; a <= kHi; ++a)
+        for (int b = kLo; b <= kHi; ++b)
+          for (int e = kLo; e <= kHi; ++e)
+            if (const int64_t c = bins.index(ijk[0] + a, ijk[1] + b, ijk[2] + e); c >= 0 && record_of[c] < 0)
+              record_of[c] = 0, cells.push_back(c);
+    }
+    std::sort(cells.begin(), cells.end());
+    int64_t records = 0;
+    for (const int64_t c : cells) record_of[c] = records, records += bins.begin[c + 1] - bins.begin[c];
+    struct Record {
+      std::array<int64_t, 3> base;  // the stencil's first node (i, j, k)
+      double weight[N];
+      uint32_t key[N];
+      double energy;
+    };
+    std::vector<Record> rec(static_cast<std::size_t>(records));
+    // needed(n): whether node n is one of nodes_, from a mark per node of the bins' box (+1 per axis).
+    std::array<int64_t, 3> mn;
+    for (int d = 0; d < 3; ++d) mn[d] = bins.n[d] + 1;
+    const auto mark_of = [&](const std::array<int64_t, 3>& ijk) -> int64_t {
+      int64_t b = 0;
+      for (int d = 0; d < 3; ++d) {
+        const int64_t i = ijk[d] - bins.lo[d];
+        if (i < 0 || i >= mn[d]) return -1;
+        b = b * mn[d] + i;
+      }
+      return b;
+    };
+    std::vector<uint8_t> mark(static_cast<std::size_t>(mn[0] * mn[1] * mn[2]), 0);
+    bool all_marked = true;
+    for (const int64_t n : nodes_) {
+      const int64_t b = mark_of(ijk_of(n));
+      if (b < 0) all_marked = false;
+      else mark[b] = 1;
+    }
+    const auto needed = [&](const std::array<int64_t, 3>& ijk, int64_t n) {
+      const int64_t b = mark_of(ijk);
+      return b >= 0 ? mark[b] != 0 : !all_marked && std::binary_search(nodes_.begin(), nodes_.end(), n);
+    };
+#pragma omp parallel
+    {
+      TriangleBins::Candidates cand;
+#pragma omp for schedule(dynamic, 4)
+      for (std::size_t ci = 0; ci < cells.size(); ++ci) {
+        const int64_t c = cells[ci];
+        for (int64_t q = bins.begin[c]; q < bins.begin[c + 1]; ++q) {
+          const int32_t p = bins.particle[q];
+          Record& r = rec[static_cast<std::size_t>(record_of[c] + (q - bins.begin[c]))];
+          St st;
+          st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
+          r.base = ijk_of(st.base);
+          bool gathered = false;
+          int k = 0;
+          st.for_each_weight([&](int64_t n, double w) {
+            r.weight[k] = w, r.key[k] = 0;
+            const std::array<int64_t, 3> ijk{r.base[0] + k / (K * K), r.base[1] + k / K % K, r.base[2] + k % K};
+            if (w != 0.0 && needed(ijk, n)) {
+              if (!gathered) {
+                // Every line of the stencil lies in the box of its first and last nodes and the
+                // particle: for linear shapes the particle's closed cell.
+                if constexpr (K == 2) {
+                  tris.gather_cell(r.base, cand);
+                } else {
+                  const Vec<3> first = node_x(st.base);
+                  const Vec<3> last = first + Vec<3>::Constant((K - 1) * h);
+                  tris.gather(first.cwiseMin(P.x[p]), last.cwiseMax(P.x[p]), cand);
+                }
+                gathered = true;
+              }
+              r.key[k] = tris.key(P.x[p], node_x(n), cand);
+            }
+            ++k;
+          });
+          r.energy = m.materials[P.material[p]]->strain_energy_density(P.stress[p], P.strain[p]);
+        }
+      }
+    }
+
 #pragma omp parallel for schedule(dynamic, 16) if (nodes_.size() > 64)
     for (std::size_t u = 0; u < nodes_.size(); ++u) {
-      std::vector<int32_t> ids;
-      const int64_t n = nodes_[u];
-      std::array<int64_t, 3> ijk;
-      int64_t rest = n;
-      for (int d = 0; d < 3; ++d) ijk[d] = rest / static_cast<int64_t>(stride[d]), rest %= static_cast<int64_t>(stride[d]);
-      const Vec<3> xn(G.origin.x() + h * ijk[0], G.origin.y() + h * ijk[1], G.origin.z() + h * ijk[2]);
+      const auto ijk = ijk_of(nodes_[u]);
       auto& list = sums_[u];
       for (int a = kLo; a <= kHi; ++a)
         for (int b = kLo; b <= kHi; ++b)
           for (int e = kLo; e <= kHi; ++e) {
-            bins.for_cell(ijk[0] + a, ijk[1] + b, ijk[2] + e, [&](int32_t p) {
-              St st;
-              st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
-              double w = 0.0;
-              st.for_each_weight([&](int64_t nn, double ww) {
-                if (nn == n) w = ww;
-              });
-              if (w == 0.0) return;
-              const uint32_t key = tris.key(P.x[p], xn, ids);
-              if (key == crack::kFieldKeyOverflow) return;
-              auto it = std::find_if(list.begin(), list.end(), [&](const RawSums& r) { return r.key == key; });
+            const int64_t c = bins.index(ijk[0] + a, ijk[1] + b, ijk[2] + e);
+            if (c < 0) continue;
+            for (int64_t q = bins.begin[c]; q < bins.begin[c + 1]; ++q) {
+              const int32_t p = bins.particle[q];
+              const Record& r = rec[static_cast<std::size_t>(record_of[c] + (q - bins.begin[c]))];
+              int slot = 0;
+              bool in = true;
+              for (int d = 0; d < 3; ++d) {
+                const int64_t o = ijk[d] - r.base[d];
+                in = in && o >= 0 && o < K;
+                slot = slot * K + static_cast<int>(o);
+              }
+              if (!in) continue;
+              const double w = r.weight[slot];
+              if (w == 0.0) continue;
+              const uint32_t key = r.key[slot];
+              if (key == crack::kFieldKeyOverflow) continue;
+              auto it = std::find_if(list.begin(), list.end(), [&](const RawSums& s) { return s.key == key; });
               if (it == list.end()) it = list.insert(list.end(), RawSums{}), it->key = key;
               const double mw = P.mass[p] * w, rw = mw * P.mass[p] / P.volume0[p];
               const Vec<3>&x = P.x[p], &v = P.v[p];
               it->m += mw;
-              it->energy += mw * m.materials[P.material[p]]->strain_energy_density(P.stress[p], P.strain[p]);
+              it->energy += mw * r.energy;
               it->stress += mw * full_tensor(P.stress[p]);
               it->grad_u += mw * displacement_gradient(P.strain[p], rotations ? P.rotation3[p] : Vec<3>::Zero());
               it->u += mw * P.u[p], it->mv += mw * v, it->mx += mw * x;
               it->rho += rw, it->rho_v += rw * v, it->rho_vv += rw * v.squaredNorm();
               it->rho_x += rw * x, it->rho_xv += rw * x.cross(v), it->rho_xx += rw * x * x.transpose();
-            });
+            }
           }
     }
   }
