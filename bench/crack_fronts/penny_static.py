@@ -9,6 +9,7 @@ largest |K_II|, |K_III| / reference, and the wall time.
 
 Usage: bench/crack_fronts/penny_static.py [--cleave build/bin/cleave] [--out DIR]
           [--cells 8] [--blocks 2,3,4] [--radii 2,4] [--volume-term] [--end-us 150] [--threads N]
+          [--shape-function linear|ugimp]
 """
 import argparse, math, pathlib
 
@@ -25,6 +26,7 @@ ap.add_argument("--volume-term", action="store_true")
 ap.add_argument("--end-us", type=float, default=150.0)
 ap.add_argument("--damping", type=float, default=0.1, help="kinetic damping, 1/us")
 ap.add_argument("--ppc", type=int, default=2)
+ap.add_argument("--shape-function", default="linear", help="linear or ugimp")
 ap.add_argument("--threads", default="")
 args = ap.parse_args()
 
@@ -40,7 +42,7 @@ def scene(block, radius):
         "analysis": {"type": "3d"},
         "resolution": h,
         "grid": {"min": [-2 * h, -2 * h, -W - 2 * h], "max": [W + 2 * h, W + 2 * h, W + 2 * h]},
-        "mpm": {"shape_function": "linear", "stress_update": "USAVG"},
+        "mpm": {"shape_function": args.shape_function, "stress_update": "USAVG"},
         "materials": [{"name": "m", "type": "linear_elastic", "E": 3000, "nu": 0.3, "density": 1.19}],
         "bodies": [{"name": "block", "material": "m", "particles_per_cell": args.ppc,
                     "shape": {"type": "box", "min": [0, 0, -W], "max": [W, W, W]}}],
@@ -64,7 +66,7 @@ print(f"a = {args.cells} cells ({h:g} mm), reference K_I = 2 sigma sqrt(a/pi) = 
 print("block | contour | t (us) | K_I/ref min..max (mean) | max |K_II|/ref | max |K_III|/ref | nodes | wall (s)")
 for block in [float(b) for b in args.blocks.split(",")]:
     for radius in [float(r) for r in args.radii.split(",")]:
-        tag = f"c{args.cells}_b{block:g}_r{radius:g}{'_v' if args.volume_term else ''}"
+        tag = f"c{args.cells}_b{block:g}_r{radius:g}{'_v' if args.volume_term else ''}_{args.shape_function}"
         rows, times, wall = run_scene(args.cleave, scene(block, radius), pathlib.Path(args.out) / tag, args.threads)
         for t in times[-3:]:
             good = [r for r in rows if float(r["time_s"]) == t and int(float(r["flag"])) == 0]
