@@ -113,6 +113,22 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     rec.x = f.x;
     rec.s = crack::front_arc_lengths(c, job.front)[job.node];
     if (!c.fronts[job.front].flags.empty()) rec.flag = c.fronts[job.front].flags[job.node];
+    // g(cell) for each non-empty cell of the bins within distance d of the node whose centre lies
+    // within `slab` of the contour's plane, in cell order.
+    const auto for_cells_within = [&](double d, double slab, auto&& g) {
+      const int r = static_cast<int>(std::ceil(d * inv_h));
+      const auto [ci, cj, ck] = detail::CellBins::cell_of(G, f.x);
+      for (int64_t a = ci - r; a <= ci + r; ++a)
+        for (int64_t b = cj - r; b <= cj + r; ++b)
+          for (int64_t e = ck - r; e <= ck + r; ++e) {
+            const int64_t cell = bins.index(a, b, e);
+            if (cell < 0 || bins.begin[cell] == bins.begin[cell + 1]) continue;
+            const V corner = G.origin + h * V(a, b, e);
+            if (std::fabs((corner + V::Constant(0.5 * h) - f.x).dot(f.e3)) > slab) continue;
+            if ((f.x - f.x.cwiseMax(corner).cwiseMin(corner + V::Constant(h))).norm() > d) continue;
+            g(cell);
+          }
+    };
 
     if (pass == 0) {
     State& S = state[j];
@@ -202,42 +218,30 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       // plane, and within a cell of it along the front (three with a mirror plane).
       const double s3max = mirrors.empty() ? h : 3.0 * h;
       const double bound = std::sqrt(contour_extent * contour_extent + s3max * s3max) + 1e-9 * h;
-      const int r = static_cast<int>(std::ceil(bound * inv_h));  // (cells of points within bound)
-      {
-        const auto [ci, cj, ck] = detail::CellBins::cell_of(G, f.x);
-        for (int64_t a = ci - r; a <= ci + r; ++a)
-          for (int64_t b = cj - r; b <= cj + r; ++b)
-            for (int64_t e = ck - r; e <= ck + r; ++e) {
-              const int64_t cell = bins.index(a, b, e);
-              if (cell < 0) continue;
-              // A cell whose centre lies more than two cells from the contour's plane holds no particle
-              // of the slab (half a cell, plus half a particle and the cell's half-diagonal) unless a
-              // mirror plane is near.
-              const V centre = G.origin + h * V(a + 0.5, b + 0.5, e + 0.5);
-              if (mirrors.empty() && std::fabs((centre - f.x).dot(f.e3)) > 2.0 * h) continue;
-              const V corner = G.origin + h * V(a, b, e);
-              if ((f.x - f.x.cwiseMax(corner).cwiseMin(corner + V::Constant(h))).norm() >= bound) continue;
-              for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
-                const int32_t p = bins.particle[q];
-                const double s3 = (P.x[p] - f.x).dot(f.e3);
-                if (mirrors.empty() && std::fabs(s3) >= h) continue;  // (particles are at most a cell wide)
-                if (!crack::inside_front_contour(f, ts, h, P.x[p])) continue;
-                const double l = std::cbrt(P.volume0[p]);
-                const auto in_slab = [&](double c) {
-                  return std::max(0.0, std::min(c + 0.5 * l, 0.5 * h) - std::max(c - 0.5 * l, -0.5 * h));
-                };
-                double in = in_slab(s3);
-                for (const double z0 : mirrors) in += in_slab(2.0 * z0 - s3);
-                if (in <= 0.0) continue;
-                S.inside.push_back({p, in / (l * h)});
-                S.slab_material += P.volume0[p] * in / l;
-                if (!ts.volume_term) continue;
-                St st;
-                st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
-                st.for_each_weight([&](int64_t n, double) { need.push_back(n); });
-              }
-            }
-      }
+      // A cell whose centre lies more than two cells from the contour's plane holds no particle of
+      // the slab (half a cell, plus half a particle and the cell's half-diagonal) unless a mirror
+      // plane is near.
+      for_cells_within(bound, mirrors.empty() ? 2.0 * h : INFINITY, [&](int64_t cell) {
+        for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
+          const int32_t p = bins.particle[q];
+          const double s3 = (P.x[p] - f.x).dot(f.e3);
+          if (mirrors.empty() && std::fabs(s3) >= h) continue;  // (particles are at most a cell wide)
+          if (!crack::inside_front_contour(f, ts, h, P.x[p])) continue;
+          const double l = std::cbrt(P.volume0[p]);
+          const auto in_slab = [&](double c) {
+            return std::max(0.0, std::min(c + 0.5 * l, 0.5 * h) - std::max(c - 0.5 * l, -0.5 * h));
+          };
+          double in = in_slab(s3);
+          for (const double z0 : mirrors) in += in_slab(2.0 * z0 - s3);
+          if (in <= 0.0) continue;
+          S.inside.push_back({p, in / (l * h)});
+          S.slab_material += P.volume0[p] * in / l;
+          if (!ts.volume_term) continue;
+          St st;
+          st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
+          st.for_each_weight([&](int64_t n, double) { need.push_back(n); });
+        }
+      });
     }
     std::sort(need.begin(), need.end());
     need.erase(std::unique(need.begin(), need.end()), need.end());
@@ -286,27 +290,13 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
         const V d = P.x[p] - f.x;
         return std::fabs(d.dot(f.e3)) <= 1.5 * h && (d - d.dot(f.e3) * f.e3).norm() <= fit;
       };
-      // The cells that can hold the fit's particles (within fit_reach of the node, and within a cell
-      // and a half of its plane: the cell's centre within that plus its half-diagonal), in cell order.
+      // The cells that can hold the fit's particles: within fit_reach of the node, and within a cell
+      // and a half of its plane (the cell's centre within that plus its half-diagonal).
       const double fit_reach = std::sqrt(fit * fit + 2.25 * h * h) * (1.0 + 1e-12);
-      const auto for_cells_within = [&](double reach_d, bool slab, auto&& g) {
-        const int r = static_cast<int>(std::ceil(reach_d * inv_h));
-        const auto [ci, cj, ck] = detail::CellBins::cell_of(G, f.x);
-        for (int64_t a = ci - r; a <= ci + r; ++a)
-          for (int64_t b = cj - r; b <= cj + r; ++b)
-            for (int64_t e = ck - r; e <= ck + r; ++e) {
-              const int64_t cell = bins.index(a, b, e);
-              if (cell < 0 || bins.begin[cell] == bins.begin[cell + 1]) continue;
-              const V corner = G.origin + h * V(a, b, e);
-              if (slab && std::fabs((corner + V::Constant(0.5 * h) - f.x).dot(f.e3)) > 2.37 * h) continue;
-              if ((f.x - f.x.cwiseMax(corner).cwiseMin(corner + V::Constant(h))).norm() > reach_d) continue;
-              g(cell);
-            }
-      };
       std::vector<int32_t> fit_set;
       double msum = 0.0;
       V mx = V::Zero(), mv = V::Zero(), mth = V::Zero();
-      for_cells_within(fit_reach, true, [&](int64_t cell) {
+      for_cells_within(fit_reach, 2.37 * h, [&](int64_t cell) {
         for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
           const int32_t p = bins.particle[q];
           if (const double d = (P.x[p] - f.x).norm(); d < nearest_d) nearest_d = d, nearest = p;
@@ -319,7 +309,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       });
       // (No particle in those cells: the nearest within reach.)
       if (nearest < 0)
-        for_cells_within(reach, false, [&](int64_t cell) {
+        for_cells_within(reach, INFINITY, [&](int64_t cell) {
           for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
             const int32_t p = bins.particle[q];
             if (const double d = (P.x[p] - f.x).norm(); d < nearest_d) nearest_d = d, nearest = p;
@@ -442,12 +432,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       if (!ts.volume_term) break;  // (the list serves the out-of-plane term too)
       St st;
       st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
-      if constexpr (St::K == 2) {
-        tris.gather_cell(node_ijk(st.base), cand);  // (the particle's closed cell)
-      } else {
-        const V first = node_pos(st.base), last = first + V::Constant((St::K - 1) * h);
-        tris.gather(first.cwiseMin(P.x[p]), last.cwiseMax(P.x[p]), cand);
-      }
+      tris.gather_stencil<St::K>(node_ijk(st.base), node_pos(st.base), P.x[p], cand);
       Mat<3> gv = Mat<3>::Zero();
       st.for_each([&](int64_t n, double, const V& g) {
         const Sums* s = field(n, tris.key(P.x[p], node_pos(n), cand));

@@ -66,13 +66,6 @@ struct CellBins {
     for (int d = 0; d < 3; ++d) c[d] = static_cast<int64_t>(std::floor((x[d] - G.origin[d]) * inv_h));
     return c;
   }
-  // f(p) for each particle p of cell (i, j, k), in index order.
-  template <class F>
-  void for_cell(int64_t i, int64_t j, int64_t k, F&& f) const {
-    const int64_t c = index(i, j, k);
-    if (c >= 0)
-      for (int64_t q = begin[c]; q < begin[c + 1]; ++q) f(particle[q]);
-  }
   // The particles of x in the grid's cells that meet [box_lo, box_hi]. One pass over all particles
   // in blocks, a branch-free test per particle that vectorises (the box is a small part of a large
   // body: most particles are left out); then those kept, counted and placed by cell.
@@ -207,6 +200,18 @@ class TriangleBins {
       c.begin.push_back(static_cast<int32_t>(c.ids.size()));
     }
     c.side.assign(c.ids.size(), kUnknown);
+  }
+  // The candidates of a particle at x for its lines to the nodes of its stencil of K x K x K nodes,
+  // base its first node and first that node's position: every such line lies in the box of the first
+  // and last nodes and x (for linear shapes the particle's closed cell).
+  template <int K>
+  void gather_stencil(const std::array<int64_t, 3>& base, const Vec<3>& first, const Vec<3>& x, Candidates& c) const {
+    if constexpr (K == 2) {
+      gather_cell(base, c);
+    } else {
+      const Vec<3> last = first + Vec<3>::Constant((K - 1) * m_.grid.h);
+      gather(first.cwiseMin(x), last.cwiseMax(x), c);
+    }
   }
   // The field key of the line x -> xn (crack_fields' key: one code per crossed crack, in crack order)
   // from the candidates gathered over a box that holds the line, x the point they were gathered for:
@@ -377,18 +382,7 @@ class NodeSums {
             r.weight[k] = w, r.key[k] = 0;
             const std::array<int64_t, 3> ijk{r.base[0] + k / (K * K), r.base[1] + k / K % K, r.base[2] + k % K};
             if (w != 0.0 && needed(ijk, n)) {
-              if (!gathered) {
-                // Every line of the stencil lies in the box of its first and last nodes and the
-                // particle: for linear shapes the particle's closed cell.
-                if constexpr (K == 2) {
-                  tris.gather_cell(r.base, cand);
-                } else {
-                  const Vec<3> first = node_x(st.base);
-                  const Vec<3> last = first + Vec<3>::Constant((K - 1) * h);
-                  tris.gather(first.cwiseMin(P.x[p]), last.cwiseMax(P.x[p]), cand);
-                }
-                gathered = true;
-              }
+              if (!gathered) tris.gather_stencil<K>(r.base, node_x(st.base), P.x[p], cand), gathered = true;
               r.key[k] = tris.key(P.x[p], node_x(n), cand);
             }
             ++k;
