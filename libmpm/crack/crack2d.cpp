@@ -191,6 +191,7 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
                          {"name", "points", "from", "to", "segment_length", "contact", "tips", "propagation"});
     Crack2D c;
     c.id = static_cast<int>(i);
+    c.key = index_path(key_path, i);
     c.name = r.string("name");
     if (c.name.empty()) throw SceneError(r.at("name"), "must not be empty");
     if (const auto [it, fresh] = names.emplace(c.name, i); !fresh)

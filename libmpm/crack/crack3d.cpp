@@ -17,6 +17,7 @@ std::vector<ExplicitCrack<3>> parse_cracks3d(const nlohmann::json& cracks, const
     ExplicitCrack<3>& c = out[i];
     static_cast<Surface<3>&>(c) = std::move(surfaces[i]);
     c.id = static_cast<int>(i);
+    c.key = index_path(key_path, i);
     const ObjectReader r(cracks[i], index_path(key_path, i),
                          {"name", "triangles", "quad", "mesh", "rectangle", "ellipse", "file", "element_size",
                           "contact", "tips", "propagation"});

@@ -49,7 +49,8 @@ struct ExplicitCrack : Surface<Dim>, FrontsOf<Dim>, ContactSettings {
   using ContactLaw = crack::ContactLaw;
   using Detection = crack::Detection;
 
-  int id = 0;  // position in the scene's "cracks" array
+  int id = 0;  // position in the model's cracks: the scene's "cracks" array, less any joined to an earlier crack
+  std::string key;  // the scene key that gave it, for messages ("cracks[2]"; of two joined, the first's)
   // points (Surface): vertices (massless crack particles), SI; in 2D the direction points[0] ->
   // points[1] -> ... defines above (left) / below (right). Contact law and detection: ContactSettings.
   // Which fronts are crack tips (where crack_tips computes J and K): the scene's "auto" (a front
