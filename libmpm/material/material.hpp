@@ -80,17 +80,25 @@ CLEAVE_INLINE inline void rotate_with_spin(Sym<Dim>& t, Sym<Dim>& u, const Mat<D
       x[3] = cs * (xx - yy) + dd * xy;
     }
   } else {
-    // q: half the rotation vector; R = I + 2/(1 + |q|^2) (Q + Q^2), Q v = q x v.
-    const Vec<3> q = (0.25 * dt) * Vec<3>(L(2, 1) - L(1, 2), L(0, 2) - L(2, 0), L(1, 0) - L(0, 1));
-    Mat<3> Q;
-    Q << 0.0, -q.z(), q.y(), q.z(), 0.0, -q.x(), -q.y(), q.x(), 0.0;
-    const Mat<3> R = Mat<3>::Identity() + (2.0 / (1.0 + q.squaredNorm())) * (Q + Q * Q);
+    // q: half the rotation vector; R = I + 2/(1 + |q|^2) (Q + Q^2), Q v = q x v, and with
+    // Q^2 = q q^T - |q|^2 I: R = (1 - k |q|^2) I + k Q + k q q^T, k = 2 / (1 + |q|^2). On scalars:
+    // as Eigen expressions R and R T R^T were out-of-line calls, 4 % of a 3D step's time.
+    const double qx = 0.25 * dt * (L(2, 1) - L(1, 2)), qy = 0.25 * dt * (L(0, 2) - L(2, 0)),
+                 qz = 0.25 * dt * (L(1, 0) - L(0, 1));
+    const double q2 = qx * qx + qy * qy + qz * qz, k = 2.0 / (1.0 + q2), c = 1.0 - k * q2;
+    const double R[3][3] = {{c + k * qx * qx, k * (qx * qy - qz), k * (qx * qz + qy)},
+                            {k * (qy * qx + qz), c + k * qy * qy, k * (qy * qz - qx)},
+                            {k * (qz * qx - qy), k * (qz * qy + qx), c + k * qz * qz}};
     for (Sym<3>* a : {&t, &u}) {
       Sym<3>& x = *a;
-      Mat<3> T;
-      T << x[0], x[3], x[5], x[3], x[1], x[4], x[5], x[4], x[2];
-      const Mat<3> U = R * T * R.transpose();
-      x << U(0, 0), U(1, 1), U(2, 2), 0.5 * (U(0, 1) + U(1, 0)), 0.5 * (U(1, 2) + U(2, 1)), 0.5 * (U(0, 2) + U(2, 0));
+      const double T[3][3] = {{x[0], x[3], x[5]}, {x[3], x[1], x[4]}, {x[5], x[4], x[2]}};
+      double A[3][3];  // R T
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) A[i][j] = R[i][0] * T[0][j] + R[i][1] * T[1][j] + R[i][2] * T[2][j];
+      // (R T R^T)_ij = sum_k A_ik R_jk, symmetric: the upper triangle, averaged with the lower.
+      const auto U = [&](int i, int j) { return A[i][0] * R[j][0] + A[i][1] * R[j][1] + A[i][2] * R[j][2]; };
+      x[0] = U(0, 0), x[1] = U(1, 1), x[2] = U(2, 2);
+      x[3] = 0.5 * (U(0, 1) + U(1, 0)), x[4] = 0.5 * (U(1, 2) + U(2, 1)), x[5] = 0.5 * (U(0, 2) + U(2, 0));
     }
   }
 }
