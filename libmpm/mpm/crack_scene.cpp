@@ -90,6 +90,7 @@ void cut_through_near_edges(Model<2>& m) {
       if (end == 0) c.points.insert(c.points.begin(), through);
       else c.points.push_back(through);
       c.above = c.below = c.points;
+      crack::set_polyline_segments(c);
       c.tip[end] = 0;
       c.update_extent();
     }

@@ -50,8 +50,11 @@ struct Particles {
 template <int Dim>
 CLEAVE_INLINE inline void integrate_spin(Particles<Dim>& P, std::size_t p, const Mat<Dim>& L, double dts) {
   if constexpr (Dim == 2) P.rotation[p] += 0.5 * (L(1, 0) - L(0, 1)) * dts;
-  else if (!P.rotation3.empty())
-    P.rotation3[p] += (0.5 * dts) * Vec<3>(L(2, 1) - L(1, 2), L(0, 2) - L(2, 0), L(1, 0) - L(0, 1));
+  else if (!P.rotation3.empty()) {  // on scalars: as an Eigen expression, an out-of-line call per particle
+    const double k = 0.5 * dts;
+    Vec<3>& r = P.rotation3[p];
+    r[0] += k * (L(2, 1) - L(1, 2)), r[1] += k * (L(0, 2) - L(2, 0)), r[2] += k * (L(1, 0) - L(0, 1));
+  }
 }
 
 }  // namespace cleave
