@@ -120,6 +120,25 @@ bool same_contact(const crack::ContactSettings& a, const crack::ContactSettings&
          a.v_sep == b.v_sep && a.v_contact == b.v_contact && a.d_contact == b.d_contact;
 }
 
+// End e of a polyline crack: 0 its start, 1 its end.
+Vec<2> end_point(const crack::Crack2D& c, int e) { return e ? c.points.back() : c.points.front(); }
+
+// One end of crack i and one of crack j (i < j).
+struct EndPair {
+  std::size_t i, j;
+  int ei, ej;
+};
+// f(pair) for every pair of ends of two different cracks, in crack order, until f returns true.
+template <class F>
+bool any_end_pair(const Model<2>& m, F&& f) {
+  for (std::size_t i = 0; i < m.cracks.size(); ++i)
+    for (std::size_t j = i + 1; j < m.cracks.size(); ++j)
+      for (int ei = 0; ei < 2; ++ei)
+        for (int ej = 0; ej < 2; ++ej)
+          if (f(EndPair{i, j, ei, ej})) return true;
+  return false;
+}
+
 // Two cracks whose ends coincide, with no third crack ending there, cut the body along one kinked
 // line: they are read as one polyline. Kept as two, the material beyond the kink reached each node
 // near the junction as two fields (one behind each crack, their keys differing in two cracks, so
@@ -130,58 +149,58 @@ bool same_contact(const crack::ContactSettings& a, const crack::ContactSettings&
 // ends at a point, cracks with different contact settings, a crack that grows (its "propagation"
 // belongs to its own scene entry), an end the scene names as a tip. Runs after resolve_tips and
 // read_propagation (which read the scene entry at each crack's id); renumbers the ids.
-void join_cracks_meeting_end_to_end(Model<2>& m) {
+bool joinable(const Model<2>& m, const EndPair& e) {
   const double tol = 1e-9 * m.grid.h;
-  const auto end_point = [](const crack::Crack2D& c, int e) { return e ? c.points.back() : c.points.front(); };
+  const crack::Crack2D &a = m.cracks[e.i], &b = m.cracks[e.j];
+  const Vec<2> x = end_point(a, e.ei);
+  if (!((end_point(b, e.ej) - x).norm() <= tol)) return false;
+  int ends_here = 0;
+  for (const auto& c : m.cracks)
+    for (int k = 0; k < 2; ++k) ends_here += (end_point(c, k) - x).norm() <= tol;
   const auto grows = [&](std::size_t i) { return !m.propagation.empty() && m.propagation[i].has_value(); };
-  const auto named_tip = [](const crack::Crack2D& c, int e) { return c.tips != "auto" && c.tip[e]; };
-  for (bool joined = true; joined;) {
-    joined = false;
-    for (std::size_t i = 0; i < m.cracks.size() && !joined; ++i)
-      for (std::size_t j = i + 1; j < m.cracks.size() && !joined; ++j)
-        for (int ei = 0; ei < 2 && !joined; ++ei)
-          for (int ej = 0; ej < 2 && !joined; ++ej) {
-            crack::Crack2D &a = m.cracks[i], &b = m.cracks[j];
-            const Vec<2> x = end_point(a, ei);
-            if (!((end_point(b, ej) - x).norm() <= tol)) continue;
-            int ends_here = 0;
-            for (const auto& c : m.cracks)
-              for (int e = 0; e < 2; ++e) ends_here += (end_point(c, e) - x).norm() <= tol;
-            if (ends_here != 2 || !same_contact(a, b) || grows(i) || grows(j) || named_tip(a, ei) || named_tip(b, ej))
-              continue;
-            // a keeps its direction (its above and below); b follows on from the junction.
-            const bool b_reversed = ei == ej;
-            std::vector<Vec<2>> bp = b.points;
-            if (b_reversed) std::reverse(bp.begin(), bp.end());
-            std::vector<Vec<2>> pts;
-            uint8_t tip0, tip1;
-            if (ei == 1) {  // a ... x, then b from x on
-              pts = a.points;
-              pts.insert(pts.end(), bp.begin() + 1, bp.end());
-              tip0 = a.tip[0], tip1 = b.tip[1 - ej];
-            } else {  // b up to x, then a from x on
-              pts = bp;
-              pts.insert(pts.end(), a.points.begin() + 1, a.points.end());
-              tip0 = b.tip[1 - ej], tip1 = a.tip[1];
-            }
-            m.warnings.push_back("cracks '" + a.name + "' and '" + b.name + "' meet end to end at " + position_text<2>(x) +
-                                 ": read as one kinked crack '" + a.name + "+" + b.name + "' in the direction of '" +
-                                 a.name + "'" + (b_reversed ? " ('" + b.name + "' reversed: its above and below swap)" : "") +
-                                 "; the junction is no crack tip");
-            a.name += "+" + b.name;
-            if (a.tips != "auto" || b.tips != "auto")
-              a.tips = tip0 && tip1 ? "both" : tip0 ? "start" : tip1 ? "end" : "none";
-            a.tip = {tip0, tip1};
-            a.points = std::move(pts);
-            a.above = a.below = a.points;
-            crack::set_polyline_segments(a);
-            a.update_extent();
-            m.cracks.erase(m.cracks.begin() + static_cast<std::ptrdiff_t>(j));
-            if (!m.propagation.empty()) m.propagation.erase(m.propagation.begin() + static_cast<std::ptrdiff_t>(j));
-            for (std::size_t k = 0; k < m.cracks.size(); ++k) m.cracks[k].id = static_cast<int>(k);
-            joined = true;
-          }
+  const auto named_tip = [](const crack::Crack2D& c, int k) { return c.tips != "auto" && c.tip[k]; };
+  return ends_here == 2 && same_contact(a, b) && !grows(e.i) && !grows(e.j) && !named_tip(a, e.ei) &&
+         !named_tip(b, e.ej);
+}
+
+// Crack j joined to crack i at the ends of e: i keeps its direction (its above and below), j follows
+// on from the junction; j is removed and the ids renumbered.
+void join_pair(Model<2>& m, const EndPair& e) {
+  crack::Crack2D &a = m.cracks[e.i], &b = m.cracks[e.j];
+  const bool b_reversed = e.ei == e.ej;
+  std::vector<Vec<2>> bp = b.points;
+  if (b_reversed) std::reverse(bp.begin(), bp.end());
+  std::vector<Vec<2>> pts;
+  uint8_t tip0, tip1;
+  if (e.ei == 1) {  // a ... x, then b from x on
+    pts = a.points;
+    pts.insert(pts.end(), bp.begin() + 1, bp.end());
+    tip0 = a.tip[0], tip1 = b.tip[1 - e.ej];
+  } else {  // b up to x, then a from x on
+    pts = bp;
+    pts.insert(pts.end(), a.points.begin() + 1, a.points.end());
+    tip0 = b.tip[1 - e.ej], tip1 = a.tip[1];
   }
+  m.warnings.push_back("cracks '" + a.name + "' and '" + b.name + "' meet end to end at " +
+                       position_text<2>(end_point(a, e.ei)) + ": read as one kinked crack '" + a.name + "+" + b.name +
+                       "' in the direction of '" + a.name + "'" +
+                       (b_reversed ? " ('" + b.name + "' reversed: its above and below swap)" : "") +
+                       "; the junction is no crack tip");
+  a.name += "+" + b.name;
+  if (a.tips != "auto" || b.tips != "auto") a.tips = tip0 && tip1 ? "both" : tip0 ? "start" : tip1 ? "end" : "none";
+  a.tip = {tip0, tip1};
+  a.points = std::move(pts);
+  a.above = a.below = a.points;
+  crack::set_polyline_segments(a);
+  a.update_extent();
+  m.cracks.erase(m.cracks.begin() + static_cast<std::ptrdiff_t>(e.j));
+  if (!m.propagation.empty()) m.propagation.erase(m.propagation.begin() + static_cast<std::ptrdiff_t>(e.j));
+  for (std::size_t k = 0; k < m.cracks.size(); ++k) m.cracks[k].id = static_cast<int>(k);
+}
+
+void join_cracks_meeting_end_to_end(Model<2>& m) {
+  EndPair found{};
+  while (any_end_pair(m, [&](const EndPair& e) { return joinable(m, e) && (found = e, true); })) join_pair(m, found);
 }
 
 // Two cracks whose ends lie within a cell of each other share nodes near the junction, where the
@@ -191,24 +210,21 @@ void join_cracks_meeting_end_to_end(Model<2>& m) {
 // join_cracks_meeting_end_to_end could not join: warn, and say why.
 void warn_meeting_ends(Model<2>& m) {
   const double h = m.grid.h;
-  for (std::size_t i = 0; i < m.cracks.size(); ++i)
-    for (std::size_t j = i + 1; j < m.cracks.size(); ++j)
-      for (int ei = 0; ei < 2; ++ei)
-        for (int ej = 0; ej < 2; ++ej) {
-          const auto& a = m.cracks[i];
-          const auto& b = m.cracks[j];
-          const Vec<2> xa = ei ? a.points.back() : a.points.front(), xb = ej ? b.points.back() : b.points.front();
-          const double d = (xa - xb).norm();
-          if (!(d < h)) continue;
-          char gap[64];
-          std::snprintf(gap, sizeof gap, "%.2g", d / h);
-          m.warnings.push_back("cracks '" + a.name + "' and '" + b.name + "': the " + (ei ? "end" : "start") + " of one and the " +
-                               (ej ? "end" : "start") + " of the other lie " + gap + " cell apart at " +
-                               position_text<2>(xa) + "; contact at such a junction makes energy (docs/validation.md, "
-                               "\"Stability at the extremes\"): write a kinked crack as one polyline (two cracks are read as one "
-                               "only where their ends coincide, no third crack ends there, their contact settings agree, "
-                               "neither grows and neither names the junction a tip)");
-        }
+  any_end_pair(m, [&](const EndPair& e) {
+    const auto &a = m.cracks[e.i], &b = m.cracks[e.j];
+    const Vec<2> xa = end_point(a, e.ei);
+    const double d = (xa - end_point(b, e.ej)).norm();
+    if (!(d < h)) return false;
+    char gap[64];
+    std::snprintf(gap, sizeof gap, "%.2g", d / h);
+    m.warnings.push_back("cracks '" + a.name + "' and '" + b.name + "': the " + (e.ei ? "end" : "start") +
+                         " of one and the " + (e.ej ? "end" : "start") + " of the other lie " + gap + " cell apart at " +
+                         position_text<2>(xa) + "; contact at such a junction makes energy (docs/validation.md, "
+                         "\"Stability at the extremes\"): write a kinked crack as one polyline (two cracks are read as one "
+                         "only where their ends coincide, no third crack ends there, their contact settings agree, "
+                         "neither grows and neither names the junction a tip)");
+    return false;
+  });
 }
 
 // The scene key "crack_tips": J-integral contour and output interval (default: global_interval).
