@@ -92,8 +92,10 @@ class SpatialIndex : public GridCells<Dim> {
   };
   using NearTest = std::conditional_t<Dim == 2, NearTest2, NearTest3>;
 
-  // The index for the cracks as they are now (Task 1 preamble). 3D: built afresh only when a crack
-  // has changed since (a crack at rest, e.g. before the load reaches it, keeps its index).
+  // The index for the cracks as they are now (Task 1 preamble). 3D: nothing to do while no crack
+  // has changed (a crack at rest, e.g. before the load reaches it); a crack that moved keeps its
+  // triangle lists while every point stays within half a margin of where it was when they were
+  // built (fit_index3), and only the boxes follow it.
   void prepare_index() {
     const int was = costs::enter(costs::CrackFields);  // the run's costs (crack_fields.hpp says why calls)
     for (auto& c : cracks_) c.update_extent();
@@ -101,8 +103,10 @@ class SpatialIndex : public GridCells<Dim> {
       note_crack_state();
       if (index_epoch_ == crack_epoch_) return costs::leave(was);
       index_epoch_ = crack_epoch_;
+      fit_index3();
+    } else {
+      build_index2();
     }
-    build_index();
     costs::leave(was);
   }
   NearTest near_test() const {
@@ -117,6 +121,9 @@ class SpatialIndex : public GridCells<Dim> {
 
  protected:
   using Base::cell_count, Base::cells_, Base::G_, Base::inv_h_, Base::parallel_points;
+  struct Span {  // 3D: a triangle's cells (fit_triangle_boxes, build_index3)
+    int lo[3], hi[3];
+  };
 
   explicit SpatialIndex(Model<Dim>& m) : Base(m.grid), cracks_(m.cracks) {
     cell_head_.assign(cell_count(), -1);
@@ -142,10 +149,6 @@ class SpatialIndex : public GridCells<Dim> {
   // overlaps the cell. A contiguous range is exact for the crossing test: a segment outside it
   // cannot reach the particle-node box, and the range's end vertices are either the crack's tips or
   // vertices no particle-node line of this cell can touch.
-  void build_index() {
-    if constexpr (Dim == 3) build_index3();
-    else build_index2();
-  }
   void build_index2() {
     for (int64_t c : touched_) cell_head_[c] = -1;
     touched_.clear();
@@ -192,36 +195,27 @@ class SpatialIndex : public GridCells<Dim> {
     }
   }
 
-  // 3D: per crack, every triangle's box grown by kReach cells is binned into the cells it overlaps
-  // (a counting sort by cell: the list of a cell holds its triangles crack by crack, in triangle
-  // order, for any thread count); one entry per cell and crack. Then each entry's tight list.
-  // (The work arrays are members: allocated once, not paged in afresh every step.)
-  void build_index3() {
-    for (int64_t c : touched_) cell_head_[c] = -1, cell_fill_[c] = 0;
-    touched_.clear();
-    entries_.clear();
-    entry_cell_.clear();
-    cell_fill_.resize(cell_head_.size(), 0);
-    const double grow = kReach * G_.h;
-    int blo[3] = {cells_[0], cells_[1], cells_[2]}, bhi[3] = {-1, -1, -1};
-    auto span_of = [&](std::size_t ci, std::size_t t) {  // triangle t's box grown by kReach cells, in cells
-      const V lo = tri_lo_[ci][t].array() - grow, hi = tri_hi_[ci][t].array() + grow;
-      Span sp;
-      for (int d = 0; d < 3; ++d) {
-        sp.lo[d] = std::max(0, static_cast<int>(std::floor((lo[d] - G_.origin[d]) * inv_h_)));
-        sp.hi[d] = std::min(cells_[d] - 1, static_cast<int>(std::floor((hi[d] - G_.origin[d]) * inv_h_)));
-      }
-      return sp;
-    };
-    auto for_cells = [&](const Span& sp, auto&& f) {
-      for (int i = sp.lo[0]; i <= sp.hi[0]; ++i)
-        for (int j = sp.lo[1]; j <= sp.hi[1]; ++j)
-          for (int k = sp.lo[2]; k <= sp.hi[2]; ++k)
-            f((static_cast<int64_t>(i) * cells_[1] + j) * cells_[2] + k);
-    };
-    // Pass 1: how many triangles each cell receives; pass 2: fill at the cells' offsets.
-    std::size_t total = 0;
+  // 3D. The lists of triangles (per cell, per entry, the tight ones) are supersets: built with every
+  // triangle's box grown by a margin of kMargin cells, they hold every triangle that the box as it
+  // is now brings into them while no crack point has moved more than half the margin since they were
+  // built (the other half absorbs rounding), so they are kept that long: a loaded crack moves a
+  // fraction of a micrometre a step, and rebuilding them every step cost 2.1-2.5 ms of a 95 ms step
+  // of the 2.5 mm rod (serial). Every answer is a function of the current boxes alone: the
+  // classification filters the lists by them (the keys and segments of a superset list in triangle
+  // order are the same), and the entries' boxes, which the near test reads, are refitted every time
+  // a crack moved, from the triangles whose box grown by kReach cells reaches the cell now
+  // (fit_entry_boxes). So a run is bit-identical whenever the lists were last built (a resumed run
+  // builds them afresh).
+  void fit_index3() {
+    fit_triangle_boxes();
+    if (!lists_hold_cracks()) build_index3();
+    fit_entry_boxes();
+  }
+  // Each triangle's box, and the cells of the box grown by kReach cells (spans_, crack by crack).
+  void fit_triangle_boxes() {
     tri_lo_.resize(cracks_.size()), tri_hi_.resize(cracks_.size());
+    crack_first_.resize(cracks_.size() + 1);
+    crack_first_[0] = 0;
     for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
       const auto& c = cracks_[ci];
       tri_lo_[ci].resize(c.simplices.size()), tri_hi_[ci].resize(c.simplices.size());
@@ -230,14 +224,71 @@ class SpatialIndex : public GridCells<Dim> {
         tri_lo_[ci][t] = c.points[T[0]].cwiseMin(c.points[T[1]]).cwiseMin(c.points[T[2]]);
         tri_hi_[ci][t] = c.points[T[0]].cwiseMax(c.points[T[1]]).cwiseMax(c.points[T[2]]);
       }
+      crack_first_[ci + 1] = crack_first_[ci] + static_cast<int64_t>(c.simplices.size());
     }
-    spans_.clear();
+    spans_.resize(static_cast<std::size_t>(crack_first_.back()));
+    int blo[3] = {cells_[0], cells_[1], cells_[2]}, bhi[3] = {-1, -1, -1};
+    std::size_t si = 0;
     for (std::size_t ci = 0; ci < cracks_.size(); ++ci)
       for (std::size_t t = 0; t < cracks_[ci].simplices.size(); ++t) {
-        const Span sp = span_of(ci, t);
-        spans_.push_back(sp);
+        const Span sp = span_of(tri_lo_[ci][t], tri_hi_[ci][t], kReach * G_.h);
+        spans_[si++] = sp;
         for (int d = 0; d < 3; ++d)
           if (sp.lo[d] <= sp.hi[d]) blo[d] = std::min(blo[d], sp.lo[d]), bhi[d] = std::max(bhi[d], sp.hi[d]);
+      }
+    for (int d = 0; d < 3; ++d) box_lo_[d] = box_hi_[d] = 0.0;  // cells [lo, hi) with entries: in_box()
+    if (bhi[0] >= 0 && bhi[1] >= 0 && bhi[2] >= 0)
+      for (int d = 0; d < 3; ++d) box_lo_[d] = blo[d], box_hi_[d] = bhi[d] + 1.0;
+  }
+  // The cells (clamped to the grid) that the box [lo - grow, hi + grow] overlaps.
+  Span span_of(const V& lo0, const V& hi0, double grow) const {
+    const V lo = lo0.array() - grow, hi = hi0.array() + grow;
+    Span sp;
+    for (int d = 0; d < 3; ++d) {
+      sp.lo[d] = std::max(0, static_cast<int>(std::floor((lo[d] - G_.origin[d]) * inv_h_)));
+      sp.hi[d] = std::min(cells_[d] - 1, static_cast<int>(std::floor((hi[d] - G_.origin[d]) * inv_h_)));
+    }
+    return sp;
+  }
+  // Are the lists built for these triangles, and is every crack point within half the margin of
+  // where it was then?
+  bool lists_hold_cracks() const {
+    if (lists_topology_ != topology_epoch_ || lists_points_.size() != cracks_.size()) return false;
+    const double slack = 0.5 * kMargin * G_.h;
+    for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
+      const auto& now = cracks_[ci].points;
+      const auto& then = lists_points_[ci];
+      if (now.size() != then.size()) return false;
+      for (std::size_t i = 0; i < now.size(); ++i)
+        if (!((now[i] - then[i]).cwiseAbs().maxCoeff() <= slack)) return false;
+    }
+    return true;
+  }
+
+  // The lists. Per crack, every triangle's box grown by kReach cells and the margin is binned into
+  // the cells it overlaps (a counting sort by cell: the list of a cell holds its triangles crack by
+  // crack, in triangle order, for any thread count); one entry per cell and crack. Then each entry's
+  // tight list. (The work arrays are members: allocated once, not paged in afresh every step.)
+  void build_index3() {
+    for (int64_t c : touched_) cell_head_[c] = -1, cell_fill_[c] = 0;
+    touched_.clear();
+    entries_.clear();
+    entry_cell_.clear();
+    cell_fill_.resize(cell_head_.size(), 0);
+    const double grow = (kReach + kMargin) * G_.h;
+    auto for_cells = [&](const Span& sp, auto&& f) {
+      for (int i = sp.lo[0]; i <= sp.hi[0]; ++i)
+        for (int j = sp.lo[1]; j <= sp.hi[1]; ++j)
+          for (int k = sp.lo[2]; k <= sp.hi[2]; ++k)
+            f((static_cast<int64_t>(i) * cells_[1] + j) * cells_[2] + k);
+    };
+    // Pass 1: how many triangles each cell receives; pass 2: fill at the cells' offsets.
+    std::size_t total = 0;
+    list_spans_.clear();
+    for (std::size_t ci = 0; ci < cracks_.size(); ++ci)
+      for (std::size_t t = 0; t < cracks_[ci].simplices.size(); ++t) {
+        const Span sp = span_of(tri_lo_[ci][t], tri_hi_[ci][t], grow);
+        list_spans_.push_back(sp);
         for_cells(sp, [&](int64_t cell) {
           if (cell_fill_[cell]++ == 0) touched_.push_back(cell);
           ++total;
@@ -256,43 +307,71 @@ class SpatialIndex : public GridCells<Dim> {
     std::size_t si = 0;
     for (std::size_t ci = 0; ci < cracks_.size(); ++ci)
       for (std::size_t t = 0; t < cracks_[ci].simplices.size(); ++t)
-        for_cells(spans_[si++], [&](int64_t cell) {
+        for_cells(list_spans_[si++], [&](int64_t cell) {
           const int32_t at = cursor_[cell_fill_[cell]]++;
           tri_ids_[at] = static_cast<int32_t>(t);
           tri_crack_[at] = static_cast<int32_t>(ci);
         });
-    // Entries: one per cell and crack, chained per cell (the last crack first, as 2D chains them).
+    // Entries: one per cell and crack, chained per cell (the last crack first, as 2D chains them);
+    // their boxes from fit_entry_boxes.
+    const V empty = V::Constant(std::numeric_limits<double>::infinity());
     for (std::size_t k = 0; k < touched_.size(); ++k) {
       const int64_t cell = touched_[k];
       for (int32_t a = cell_offset_[k]; a < cell_offset_[k + 1];) {
         const int32_t ci = tri_crack_[a];
         int32_t b = a;
-        V lo = V::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-        for (; b < cell_offset_[k + 1] && tri_crack_[b] == ci; ++b)
-          lo = lo.cwiseMin(tri_lo_[ci][tri_ids_[b]]), hi = hi.cwiseMax(tri_hi_[ci][tri_ids_[b]]);
-        entries_.push_back({ci, a, b - 1, cell_head_[cell], lo, hi});
+        while (b < cell_offset_[k + 1] && tri_crack_[b] == ci) ++b;
+        entries_.push_back({ci, a, b - 1, cell_head_[cell], empty, -empty});
         entry_cell_.push_back(cell);
         cell_head_[cell] = static_cast<int32_t>(entries_.size() - 1);
         a = b;
       }
       cell_fill_[cell] = 0;
     }
-    for (int d = 0; d < 3; ++d) box_lo_[d] = box_hi_[d] = 0.0;
-    if (bhi[0] >= 0 && !touched_.empty())
-      for (int d = 0; d < 3; ++d) box_lo_[d] = blo[d], box_hi_[d] = bhi[d] + 1.0;
     build_tight_lists();
+    lists_topology_ = topology_epoch_;
+    lists_points_.resize(cracks_.size());
+    for (std::size_t ci = 0; ci < cracks_.size(); ++ci) lists_points_[ci] = cracks_[ci].points;
   }
 
-  // 3D, per entry: its tight list, the triangles of its range whose boxes meet the closed box S of
-  // its cell grown by kTightGrow cells (stored with the entry: the test that a particle's box lies in
-  // S must see the very doubles that chose the list). In parallel over entries, each list at the
-  // offset of a prefix sum of the counts: the same lists for any thread count.
+  // Each entry's box: that of the triangles of its list whose box grown by kReach cells overlaps the
+  // entry's cell now (empty, +inf / -inf, when none does: then no particle of the cell is near it).
+  // The same boxes as lists built for the cracks as they are would have. In parallel over entries.
+  void fit_entry_boxes() {
+    const std::size_t ne = entries_.size();
+    const int64_t nyz = static_cast<int64_t>(cells_[1]) * cells_[2];
+#pragma omp parallel for schedule(static) if (parallel_points(ne))
+    for (std::size_t e = 0; e < ne; ++e) {
+      Entry& en = entries_[e];
+      const int64_t cell = entry_cell_[e];
+      const int ijk[3] = {static_cast<int>(cell / nyz), static_cast<int>((cell / cells_[2]) % cells_[1]),
+                          static_cast<int>(cell % cells_[2])};
+      const Span* spans = spans_.data() + crack_first_[en.crack];
+      const std::vector<V>&tlo = tri_lo_[en.crack], &thi = tri_hi_[en.crack];
+      V lo = V::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+      for (int32_t a = en.seg_lo; a <= en.seg_hi; ++a) {
+        const int32_t t = tri_ids_[a];
+        const Span& sp = spans[t];
+        if (ijk[0] < sp.lo[0] || ijk[0] > sp.hi[0] || ijk[1] < sp.lo[1] || ijk[1] > sp.hi[1] || ijk[2] < sp.lo[2] ||
+            ijk[2] > sp.hi[2])
+          continue;
+        lo = lo.cwiseMin(tlo[t]), hi = hi.cwiseMax(thi[t]);
+      }
+      en.lo = lo, en.hi = hi;
+    }
+  }
+
+  // 3D, per entry: its tight list, the triangles of its range whose boxes, grown by the margin,
+  // meet the closed box S of its cell grown by kTightGrow cells (S is stored with the entry: the test
+  // that a particle's box lies in S must see the very doubles that chose the list). In parallel over
+  // entries, each list at the offset of a prefix sum of the counts: the same lists for any thread count.
   void build_tight_lists() {
     const std::size_t ne = entries_.size();
     tight_.resize(ne);
     const int64_t nyz = static_cast<int64_t>(cells_[1]) * cells_[2];
+    const double m = kMargin * G_.h;
     auto meets = [&](const Tight& T, int32_t ci, int32_t t) {
-      return (tri_hi_[ci][t].array() >= T.lo.array()).all() && (tri_lo_[ci][t].array() <= T.hi.array()).all();
+      return (tri_hi_[ci][t].array() + m >= T.lo.array()).all() && (tri_lo_[ci][t].array() - m <= T.hi.array()).all();
     };
 #pragma omp parallel for schedule(static) if (parallel_points(ne))
     for (std::size_t e = 0; e < ne; ++e) {
@@ -347,7 +426,7 @@ class SpatialIndex : public GridCells<Dim> {
   // copies of the last call (then taken afresh). Whatever is a function of the crack geometry alone
   // (the index, the side-field keys, a particle's keys) is kept while the epoch stays.
   void note_crack_state() {
-    bool same = state_.size() == cracks_.size();
+    bool same = state_.size() == cracks_.size(), same_topology = same;
     state_.resize(cracks_.size());
     auto keep = [](auto& kept, const auto& now) {  // true when kept equals now; kept = now
       if (kept.size() == now.size() && std::memcmp(kept.data(), now.data(), now.size() * sizeof(now[0])) == 0)
@@ -358,11 +437,14 @@ class SpatialIndex : public GridCells<Dim> {
     for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
       const auto& c = cracks_[ci];
       CrackState& st = state_[ci];
+      const bool n = st.points.size() == c.points.size();
       const bool p = keep(st.points, c.points), a = keep(st.above, c.above), b = keep(st.below, c.below),
                  t = keep(st.simplices, c.simplices);
       same = same && p && a && b && t;
+      same_topology = same_topology && n && t;
     }
     if (!same) ++crack_epoch_;
+    if (!same_topology) ++topology_epoch_;
   }
 
   std::vector<crack::ExplicitCrack<Dim>>& cracks_;
@@ -372,14 +454,16 @@ class SpatialIndex : public GridCells<Dim> {
   };
   std::vector<CrackState> state_;
   uint64_t crack_epoch_ = 0, index_epoch_ = ~uint64_t{0};
+  uint64_t topology_epoch_ = 0, lists_topology_ = ~uint64_t{0};  // 3D: triangles or point counts changed
   double near_reach_;  // a particle is near when within this distance of an index entry's box
   std::vector<int32_t> cell_head_;
   double box_lo_[Dim] = {}, box_hi_[Dim] = {};  // cells [lo, hi) holding all index entries
   std::vector<int32_t> tri_ids_, cell_offset_, cell_fill_;  // 3D (build_index3)
-  struct Span {  // 3D: a triangle's cells (build_index3)
-    int lo[3], hi[3];
-  };
-  std::vector<Span> spans_;
+  std::vector<Span> spans_;       // 3D, per triangle (crack by crack, from crack_first_): its box grown by kReach cells, now
+  std::vector<Span> list_spans_;  // the same grown by the margin too, when the lists were built
+  std::vector<int64_t> crack_first_;
+  static constexpr double kMargin = 1.0 / 16;  // cells (fit_index3)
+  std::vector<std::vector<V>> lists_points_;   // the crack points when the lists were built
   std::vector<int32_t> cursor_, tri_crack_;
   // 3D tight lists (build_tight_lists): S is a cell grown by kTightGrow cells, so that the box of a
   // particle and its stencil (one cell linear, two uGIMP) fits, as does a crack-surface probe's a
