@@ -123,6 +123,14 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
     costs::leave(was);
   }
 
+  // Near particle k uses only its nodes' ordinary fields (the stepper's arrays): in the passes that read
+  // or add to fields alone (stresses, forces, Task 5), its path is the far particles' (one that
+  // evaluates its stencil afresh, the same values as the cached one: cheaper than loading 300-1000
+  // bytes of stencil per particle; about half of the near particles of a crack lie beyond the cell
+  // rows that it cuts). plain_extrapolation(k): nor does Task 1 add to a multi-field node's sums.
+  bool plain(std::size_t k) const { return !slot_any_[k]; }
+  bool plain_extrapolation(std::size_t k) const { return !block_any_[k]; }
+
   // Calls f(node, x, w, g) for every stencil node of near particle k (index into near_list()):
   // x < 0 means the node's ordinary field (the stepper's arrays), else the extra slot index.
   // (Most near particles use only ordinary fields: they take a path with x = -1 known to the compiler.)
@@ -328,7 +336,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   using Base::force_, Base::grid_, Base::kin_, Base::kOverflow, Base::mass_, Base::momentum_, Base::near_;
   using Base::near_flag_, Base::near_index_, Base::near_st_, Base::node_block_, Base::P_, Base::pair_slot_;
   using Base::bodies_, Base::body_tag, Base::fvol_, Base::fvol0_, Base::grad_, Base::grad0_;
-  using Base::rot_, Base::side_fields_, Base::side_valid_, Base::slot_any_, Base::volume_, Base::xkin_;
+  using Base::rot_, Base::side_fields_, Base::side_valid_, Base::slot_any_, Base::block_any_, Base::volume_, Base::xkin_;
 
   std::vector<double> area0_;  // per particle: its area (2D) or volume (3D) at zero strain (eq. 25)
   bool need_volume_ = false, need_disp_ = false;  // some crack detects contact by volume / displacement

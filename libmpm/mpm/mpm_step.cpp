@@ -193,6 +193,7 @@ class MpmStepper final : public Stepper<Dim> {
       if (!cf_) return order_.scatter(far);
       const int32_t* nk = near_index_;
       order_.scatter(far, [&](std::size_t p) CLEAVE_INLINE {
+        if (cf_->plain_extrapolation(nk[p])) return far(p);
         cf_->extrapolate(nk[p], cf_->stencil(nk[p]));
         if constexpr (moments) {
           St s;
@@ -285,6 +286,7 @@ class MpmStepper final : public Stepper<Dim> {
       const auto& near = cf_->near_list();
       auto near_body = [&](std::size_t k) CLEAVE_INLINE {  // (stencils: the start-of-step ones, cached)
         const std::size_t p = static_cast<std::size_t>(near[k]);
+        if (cf_->plain(k)) return body(p);
         if constexpr (update) {
           Mat<Dim> L = Mat<Dim>::Zero();
           cf_->for_each_pair(k, cf_->stencil(k), [&](int64_t n, int32_t x, double, const Vec<Dim>& g) {
@@ -433,6 +435,7 @@ class MpmStepper final : public Stepper<Dim> {
         const auto& near = cf_->near_list();
         auto near_body = [&](std::size_t k) CLEAVE_INLINE {
           const std::size_t p = static_cast<std::size_t>(near[k]);
+          if (cf_->plain(k)) return body(p);
           Vec<Dim> a = Vec<Dim>::Zero(), v = Vec<Dim>::Zero();
           cf_->for_each_pair_weight(k, cf_->stencil(k), [&](int64_t n, int32_t x, double w) {
             const auto& kn = cf_->kin(n, x);

@@ -8,6 +8,7 @@
 // (crack/crossing3d.hpp, seed 000 Appendix A), on the triangles of the index entries.
 #pragma once
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -258,9 +259,9 @@ class Classification : public BodyGroups<Dim, SF> {
   // to the triangles whose bounding boxes meet the closed box B of xp and the nodes (exact, as in 2D:
   // a triangle apart from B cannot meet a line, and the crossing rules are per triangle); each line
   // is then tested on the triangles of that short list whose boxes meet its own box. A line's box
-  // spans xp and one node, so it is found axis by axis: bit a of mask[d][i] says whether triangle
+  // spans xp and one node, so it is found axis by axis: bit i of bits[d][a] says whether triangle
   // i's box meets, along axis d, the span of xp and the block's a-th node coordinate (the triangle
-  // meets line (a, b, c) when its three bits are set). xp's side of each triangle's plane is
+  // meets line (a, b, c) when its three bits are set: one AND per 64 triangles). xp's side of each triangle's plane is
   // computed once for all its lines. Same keys and segments as classify() line by line.
   template <int K, class Want, class Seg, class Emit>
   bool classify_block3(int64_t cell, const V& xp, const double (&nc)[3][K], Want&& want, Seg&& seg_of,
@@ -316,18 +317,23 @@ class Classification : public BodyGroups<Dim, SF> {
         }
       return true;
     }
-    uint8_t mask[3][kMaxTri];
+    // bits[d][a]: bit i set when triangle ids[i]'s box meets, along axis d, the span of xp and the
+    // block's a-th node coordinate; a line's triangles are the AND of its three axes' words.
+    constexpr int kWords = kMaxTri / 64;
+    const int nw = (nid + 63) / 64;
+    uint64_t bits[3][K][kWords];
+    for (int d = 0; d < 3; ++d)
+      for (int a = 0; a < K; ++a) std::fill_n(bits[d][a], nw, uint64_t{0});
     int8_t side_of[kMaxTri];  // xp's side of triangle ids[i]'s plane; 2: not yet computed
     for (int e = 0; e < nsub; ++e)
       for (int i = sub[e].lo; i <= sub[e].hi; ++i) {
         const V& tlo = tri_lo_[sub[e].crack][ids[i]];
         const V& thi = tri_hi_[sub[e].crack][ids[i]];
-        for (int d = 0; d < 3; ++d) {
-          unsigned m = 0;
+        for (int d = 0; d < 3; ++d)
           for (int a = 0; a < K; ++a)
-            m |= static_cast<unsigned>(thi[d] >= std::min(xp[d], nc[d][a]) && tlo[d] <= std::max(xp[d], nc[d][a])) << a;
-          mask[d][i] = static_cast<uint8_t>(m);
-        }
+            bits[d][a][i >> 6] |=
+                static_cast<uint64_t>(thi[d] >= std::min(xp[d], nc[d][a]) && tlo[d] <= std::max(xp[d], nc[d][a]))
+                << (i & 63);
         side_of[i] = 2;
       }
     struct At {  // the triangle ids of the positions hit[]
@@ -344,8 +350,13 @@ class Classification : public BodyGroups<Dim, SF> {
       for (int e = 0; e < nsub && !overflow; ++e) {
         int32_t hit[kMaxTri];  // positions in ids of the triangles meeting the line's box, in order
         int m = 0;
-        for (int i = sub[e].lo; i <= sub[e].hi; ++i)
-          if ((mask[0][i] >> ax) & (mask[1][i] >> ay) & (mask[2][i] >> az) & 1u) hit[m++] = i;
+        const int lo = sub[e].lo, hi = sub[e].hi;
+        for (int w = lo >> 6; lo <= hi && w <= hi >> 6; ++w) {
+          uint64_t word = bits[0][ax][w] & bits[1][ay][w] & bits[2][az][w];
+          if (w == lo >> 6) word &= ~uint64_t{0} << (lo & 63);            // from lo
+          if (w == hi >> 6) word &= ~uint64_t{0} >> (63 - (hi & 63));     // to hi
+          for (; word; word &= word - 1) hit[m++] = 64 * w + std::countr_zero(word);
+        }
         if (m == 0) continue;
         const crack::ExplicitCrack<Dim>& c = cracks_[sub[e].crack];
         auto particle_side = [&](std::size_t i) {

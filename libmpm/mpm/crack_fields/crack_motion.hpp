@@ -316,7 +316,8 @@ class CrackMotion : public FieldSlots<Dim, SF> {
     auto& out = side_fields_[ci];
     out.assign(2 * c.points.size(), SideFields{});
     const std::size_t np = c.points.size();
-#pragma omp parallel for schedule(static) if (parallel_points(np))
+    // (dynamic: a point's cost varies tenfold, with the triangles about it and whether its keys are kept)
+#pragma omp parallel for schedule(dynamic, 16) if (parallel_points(np))
     for (std::size_t i = 0; i < np; ++i) {
       if (is_tip(c, i)) continue;  // a tip's surfaces follow the point itself
       for (int side = 0; side < 2; ++side) {

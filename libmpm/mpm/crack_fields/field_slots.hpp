@@ -116,6 +116,14 @@ class FieldSlots : public Classification<Dim, SF> {
         }
       });
     }
+    // Which near particles reach a multi-field node at all (with an extra field or without one).
+    block_any_.resize(nn);
+#pragma omp parallel for schedule(static) if (worth_parallel(nn))
+    for (std::size_t k = 0; k < nn; ++k) {
+      uint8_t any = slot_any_[k];
+      if (!any) near_st_[k].for_each_weight([&](int64_t n, double) { any |= node_block_[n] >= 0; });
+      block_any_[k] = any;
+    }
     const std::size_t ns = block_node_.size() * kExtra;
     mass_.assign(ns, 0.0);
     momentum_.assign(ns, V::Zero());
@@ -171,6 +179,7 @@ class FieldSlots : public Classification<Dim, SF> {
   GridFields<Dim>& grid_;                  // the ordinary fields (the stepper's)
   std::vector<NodeKinematics<Dim>>& kin_;  // and their velocities and accelerations
   std::vector<uint8_t> slot_any_;   // per near particle: does a pair use an extra field (allocate_fields)
+  std::vector<uint8_t> block_any_;  // per near particle: is a node of its stencil a multi-field node
   std::vector<uint8_t> pair_slot_;  // per pair: 0 for the ordinary field, else 1 + slot in the block
   std::vector<int32_t> node_block_;  // per node: its block, or -1
   std::vector<int64_t> block_node_;
