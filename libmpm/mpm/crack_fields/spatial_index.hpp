@@ -43,7 +43,7 @@ class SpatialIndex : public GridCells<Dim> {
   };
   // Is a particle at x near a crack: in a cell with index entries, within near_reach_ of the box of
   // one of them? in_box(x): is x in the box of the cells with entries (a few comparisons, which
-  // the caller's loop vectorises); operator(): the full test, for x in that box.
+  // the caller's loop vectorises; 3D: along one axis); operator(): the full test, for x in_box.
   // (Everything by value: the caller's flag stores (uint8_t) could otherwise alias these members
   // and force reloads in its loop.)
   struct NearTest2 {
@@ -66,20 +66,24 @@ class SpatialIndex : public GridCells<Dim> {
       return 0;
     }
   };
+  // 3D: in_box tests one axis, the one along which the box is thinnest for the grid (a crack is a
+  // surface: along its normal the box spans a few cells), and operator() the other two: the test
+  // of every particle's three axes in the strip pass cost ~0.3 ms a step of the 830 000-particle rod.
   struct NearTest3 {
     double o[3], inv_h, lo[3], hi[3], reach;
     int64_t ny, nz;
     const int32_t* head;
     const Entry* entries;
+    int axis;
     uint8_t in_box(const V& x) const {
-      uint8_t in = 1;
-      for (int d = 0; d < 3; ++d) {
-        const double f = (x[d] - o[d]) * inv_h;
-        in &= (f >= lo[d]) & (f < hi[d]);
-      }
-      return in;
+      const double f = (x[axis] - o[axis]) * inv_h;
+      return (f >= lo[axis]) & (f < hi[axis]);
     }
     uint8_t operator()(const V& x) const {
+      for (int d = 0; d < 3; ++d) {
+        const double f = (x[d] - o[d]) * inv_h;
+        if (!(f >= lo[d] && f < hi[d])) return 0;
+      }
       int64_t cell = 0;
       const int64_t n[3] = {0, ny, nz};
       for (int d = 0; d < 3; ++d) cell = cell * n[d] + static_cast<int64_t>((x[d] - o[d]) * inv_h);
@@ -110,11 +114,14 @@ class SpatialIndex : public GridCells<Dim> {
     costs::leave(was);
   }
   NearTest near_test() const {
-    if constexpr (Dim == 3)
+    if constexpr (Dim == 3) {
+      int axis = 0;
+      for (int d = 1; d < 3; ++d)
+        if ((box_hi_[d] - box_lo_[d]) * cells_[axis] < (box_hi_[axis] - box_lo_[axis]) * cells_[d]) axis = d;
       return {{G_.origin.x(), G_.origin.y(), G_.origin.z()}, inv_h_, {box_lo_[0], box_lo_[1], box_lo_[2]},
               {box_hi_[0], box_hi_[1], box_hi_[2]}, near_reach_, static_cast<int64_t>(cells_[1]),
-              static_cast<int64_t>(cells_[2]), cell_head_.data(), entries_.data()};
-    else
+              static_cast<int64_t>(cells_[2]), cell_head_.data(), entries_.data(), axis};
+    } else
     return {G_.origin.x(), G_.origin.y(), inv_h_, box_lo_[0], box_hi_[0], box_lo_[1], box_hi_[1], near_reach_,
             static_cast<int64_t>(cells_[1]), cell_head_.data(), entries_.data()};
   }
