@@ -258,6 +258,16 @@ TEST(RunFaultsInProcess, AStopBetweenFramesOfACrackedMpmRunResumesBitForBit) {
   stop_and_resume_in_process(s, 7, fs::path(CLEAVE_BINARY_DIR) / "test_run_faults" / "dcb");
 }
 
+// A moving 3D crack keeps its triangle lists while it moves less than a margin (spatial_index.hpp);
+// the resumed run builds them afresh at the stop: every answer must be the same.
+TEST(RunFaultsInProcess, AStopBetweenFramesOfA3DCrackedMpmRunResumesBitForBit) {
+  json s = load_scene_file(fs::path(CLEAVE_SOURCE_DIR) / "data/scenes/block_penny_crack.json");
+  s["time"]["end"] = 10.0;  // us, 40 steps: the pulse reaches the crack at about 2 us and opens it
+  s["output"] = {{"interval", 2.0}, {"global_interval", 0.5}, {"tip_interval", 0.5}};
+  s["crack_tips"] = json::object();
+  stop_and_resume_in_process(s, 30, fs::path(CLEAVE_BINARY_DIR) / "test_run_faults" / "penny3d");
+}
+
 TEST(RunFaultsInProcess, AStopBetweenFramesOfAPeridynamicRunResumesBitForBit) {
   json s = load_scene_file(fs::path(CLEAVE_SOURCE_DIR) / "data/scenes/pd_branching.json");
   s["resolution"] = 2;
