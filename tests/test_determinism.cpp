@@ -47,6 +47,30 @@ TEST(Determinism, BeamImpactOneVsTwoThreads) {
   }
 }
 
+// A cracked scene stepped at 1 and at 2 threads: the same particles, energies and crack geometry
+// (its one crack with enough points that the loops over them run in parallel). Returns the crack.
+template <int Dim>
+crack::ExplicitCrack<Dim> expect_cracked_run_identical(const nlohmann::json& s, long steps, const char* what) {
+  std::vector<crack::ExplicitCrack<Dim>> cracks[2];
+  Snapshot<Dim> snap[2];
+  for (int t = 0; t < 2; ++t) {
+    omp_set_num_threads(t + 1);
+    Model<Dim> m = build_model<Dim>(s);
+    auto st = make_stepper<Dim>(m);
+    EXPECT_FALSE(test::advance(*st, steps));
+    snap[t] = {m.particles.x, m.particles.v, m.particles.stress, st->global_state()};
+    cracks[t] = m.cracks;
+  }
+  expect_identical(snap[0], snap[1]);
+  EXPECT_EQ(cracks[0].size(), 1u);
+  if (cracks[0].empty()) return {};
+  EXPECT_GT(cracks[0][0].points.size(), 128u);  // the parallel loops over crack points ran
+  EXPECT_TRUE(cracks[0][0].points == cracks[1][0].points && cracks[0][0].above == cracks[1][0].above &&
+              cracks[0][0].below == cracks[1][0].below)
+      << what << ": crack geometry differs between 1 and 2 threads";
+  return cracks[0][0];
+}
+
 TEST(Determinism, CrackedDcbOneVsTwoThreads) {
   // The DCB with its explicit crack, refined so that the near particles run in the strip-ordered
   // parallel passes (more than 8 192 particles in all) and the crack module's loops over crack points
@@ -59,46 +83,15 @@ TEST(Determinism, CrackedDcbOneVsTwoThreads) {
   s["mpm"]["shape_function"] = "ugimp";
   for (const char* scheme : {"USAVG", "USF"}) {  // re-extrapolating; moving in Task 5
     s["mpm"]["stress_update"] = scheme;
-    std::vector<crack::Crack2D> cracks[2];
-    Snapshot<2> snap[2];
-    for (int t = 0; t < 2; ++t) {
-      omp_set_num_threads(t + 1);
-      Model<2> m = build_model<2>(s);
-      auto st = make_stepper<2>(m);
-      EXPECT_FALSE(test::advance(*st, 20));
-      snap[t] = {m.particles.x, m.particles.v, m.particles.stress, st->global_state()};
-      cracks[t] = m.cracks;
-    }
-    expect_identical(snap[0], snap[1]);
-    ASSERT_EQ(cracks[0].size(), 1u);
-    ASSERT_GT(cracks[0][0].points.size(), 128u);  // the parallel loops over crack points ran
-    EXPECT_TRUE(cracks[0][0].points == cracks[1][0].points && cracks[0][0].above == cracks[1][0].above &&
-                cracks[0][0].below == cracks[1][0].below)
-        << scheme << ": crack geometry differs between 1 and 2 threads";
+    expect_cracked_run_identical<2>(s, 20, scheme);
   }
 }
 
 TEST(Determinism, CrackedBlock3DOneVsTwoThreads) {
   // The penny-cracked block (32 000 particles; about 300 crack points: the loops over particles, crack
   // points and multi-field nodes all run in parallel), stepped until its crack has opened and moved.
-  nlohmann::json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/block_penny_crack.json");
-  std::vector<crack::ExplicitCrack<3>> cracks[2];
-  Snapshot<3> snap[2];
-  for (int t = 0; t < 2; ++t) {
-    omp_set_num_threads(t + 1);
-    Model<3> m = build_model<3>(s);
-    auto st = make_stepper<3>(m);
-    EXPECT_FALSE(test::advance(*st, 50));
-    snap[t] = {m.particles.x, m.particles.v, m.particles.stress, st->global_state()};
-    cracks[t] = m.cracks;
-  }
-  expect_identical(snap[0], snap[1]);
-  ASSERT_EQ(cracks[0].size(), 1u);
-  ASSERT_GT(cracks[0][0].points.size(), 128u);
-  EXPECT_TRUE(cracks[0][0].points == cracks[1][0].points && cracks[0][0].above == cracks[1][0].above &&
-              cracks[0][0].below == cracks[1][0].below)
-      << "crack geometry differs between 1 and 2 threads";
-  const auto& c = cracks[0][0];
+  const nlohmann::json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/block_penny_crack.json");
+  const auto c = expect_cracked_run_identical<3>(s, 50, "penny block");
   double opening = 0.0;
   for (std::size_t i = 0; i < c.points.size(); ++i) opening = std::max(opening, (c.above[i] - c.below[i]).norm());
   EXPECT_GT(opening, 0.0) << "the crack has not opened: the test does not exercise a moving crack";
