@@ -80,13 +80,13 @@ class SpatialIndex : public GridCells<Dim> {
       return (f >= lo[axis]) & (f < hi[axis]);
     }
     uint8_t operator()(const V& x) const {
+      int64_t cell = 0;
+      const int64_t n[3] = {0, ny, nz};
       for (int d = 0; d < 3; ++d) {
         const double f = (x[d] - o[d]) * inv_h;
         if (!(f >= lo[d] && f < hi[d])) return 0;
+        cell = cell * n[d] + static_cast<int64_t>(f);
       }
-      int64_t cell = 0;
-      const int64_t n[3] = {0, ny, nz};
-      for (int d = 0; d < 3; ++d) cell = cell * n[d] + static_cast<int64_t>((x[d] - o[d]) * inv_h);
       for (int32_t e = head[cell]; e >= 0; e = entries[e].next) {
         const Entry& en = entries[e];
         if ((x.array() >= en.lo.array() - reach).all() && (x.array() <= en.hi.array() + reach).all()) return 1;
@@ -247,6 +247,10 @@ class SpatialIndex : public GridCells<Dim> {
     if (bhi[0] >= 0 && bhi[1] >= 0 && bhi[2] >= 0)
       for (int d = 0; d < 3; ++d) box_lo_[d] = blo[d], box_hi_[d] = bhi[d] + 1.0;
   }
+  // 3D: the grid indices of cell (i * ny + j) * nz + k.
+  std::array<int64_t, 3> cell_ijk(int64_t cell) const {
+    return {cell / (static_cast<int64_t>(cells_[1]) * cells_[2]), (cell / cells_[2]) % cells_[1], cell % cells_[2]};
+  }
   // The cells (clamped to the grid) that the box [lo - grow, hi + grow] overlaps.
   Span span_of(const V& lo0, const V& hi0, double grow) const {
     const V lo = lo0.array() - grow, hi = hi0.array() + grow;
@@ -346,13 +350,10 @@ class SpatialIndex : public GridCells<Dim> {
   // The same boxes as lists built for the cracks as they are would have. In parallel over entries.
   void fit_entry_boxes() {
     const std::size_t ne = entries_.size();
-    const int64_t nyz = static_cast<int64_t>(cells_[1]) * cells_[2];
 #pragma omp parallel for schedule(static) if (parallel_points(ne))
     for (std::size_t e = 0; e < ne; ++e) {
       Entry& en = entries_[e];
-      const int64_t cell = entry_cell_[e];
-      const int ijk[3] = {static_cast<int>(cell / nyz), static_cast<int>((cell / cells_[2]) % cells_[1]),
-                          static_cast<int>(cell % cells_[2])};
+      const auto ijk = cell_ijk(entry_cell_[e]);
       const Span* spans = spans_.data() + crack_first_[en.crack];
       const std::vector<V>&tlo = tri_lo_[en.crack], &thi = tri_hi_[en.crack];
       V lo = V::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
@@ -375,7 +376,6 @@ class SpatialIndex : public GridCells<Dim> {
   void build_tight_lists() {
     const std::size_t ne = entries_.size();
     tight_.resize(ne);
-    const int64_t nyz = static_cast<int64_t>(cells_[1]) * cells_[2];
     const double m = kMargin * G_.h;
     auto meets = [&](const Tight& T, int32_t ci, int32_t t) {
       return (tri_hi_[ci][t].array() + m >= T.lo.array()).all() && (tri_lo_[ci][t].array() - m <= T.hi.array()).all();
@@ -384,8 +384,7 @@ class SpatialIndex : public GridCells<Dim> {
     for (std::size_t e = 0; e < ne; ++e) {
       const Entry& en = entries_[e];
       Tight& T = tight_[e];
-      const int64_t cell = entry_cell_[e];
-      const int64_t ijk[3] = {cell / nyz, (cell / cells_[2]) % cells_[1], cell % cells_[2]};
+      const auto ijk = cell_ijk(entry_cell_[e]);
       for (int d = 0; d < 3; ++d) {
         T.lo[d] = G_.origin[d] + G_.h * (static_cast<double>(ijk[d]) - kTightGrow);
         T.hi[d] = G_.origin[d] + G_.h * (static_cast<double>(ijk[d]) + 1.0 + kTightGrow);
@@ -414,8 +413,7 @@ class SpatialIndex : public GridCells<Dim> {
   // and it lies within 1 + kTightGrow cells of `cell`, so it is in `cell`'s full list (kReach);
   // the lists keep triangle order. The box's triangles are thus the same from either list.
   int32_t tight_head(int64_t cell, const V& lo, const V& hi) const {
-    const int64_t nyz = static_cast<int64_t>(cells_[1]) * cells_[2];
-    const int64_t own[3] = {cell / nyz, (cell / cells_[2]) % cells_[1], cell % cells_[2]};
+    const auto own = cell_ijk(cell);
     int64_t c = 0;
     for (int d = 0; d < 3; ++d) {
       const double f = (0.5 * (lo[d] + hi[d]) - G_.origin[d]) * inv_h_;
@@ -444,11 +442,10 @@ class SpatialIndex : public GridCells<Dim> {
     for (std::size_t ci = 0; ci < cracks_.size(); ++ci) {
       const auto& c = cracks_[ci];
       CrackState& st = state_[ci];
-      const bool n = st.points.size() == c.points.size();
       const bool p = keep(st.points, c.points), a = keep(st.above, c.above), b = keep(st.below, c.below),
                  t = keep(st.simplices, c.simplices);
       same = same && p && a && b && t;
-      same_topology = same_topology && n && t;
+      same_topology = same_topology && t;
     }
     if (!same) ++crack_epoch_;
     if (!same_topology) ++topology_epoch_;
@@ -461,7 +458,7 @@ class SpatialIndex : public GridCells<Dim> {
   };
   std::vector<CrackState> state_;
   uint64_t crack_epoch_ = 0, index_epoch_ = ~uint64_t{0};
-  uint64_t topology_epoch_ = 0, lists_topology_ = ~uint64_t{0};  // 3D: triangles or point counts changed
+  uint64_t topology_epoch_ = 0, lists_topology_ = ~uint64_t{0};  // 3D: bumped when a crack's triangles change
   double near_reach_;  // a particle is near when within this distance of an index entry's box
   std::vector<int32_t> cell_head_;
   double box_lo_[Dim] = {}, box_hi_[Dim] = {};  // cells [lo, hi) holding all index entries
