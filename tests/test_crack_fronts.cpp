@@ -236,6 +236,75 @@ TEST(CrackFrontJ, OneAndTwoThreadsGiveTheSameBits) {
   EXPECT_GT(one[0].J1, 0.0);
 }
 
+// The stepper keeps the particles near the fronts between evaluations (FrontParticles) while no
+// particle can have moved into the evaluated box from outside its list: the bins are those of a
+// pass over every particle, bit for bit, moved by less or more than the list's two-cell margin.
+TEST(FrontParticles, KeptParticlesBinAsAFullPassWhateverTheParticlesTravel) {
+  GridGeometry<3> G;
+  G.origin = Vec<3>(-1.0, -2.0, 0.5), G.h = 0.25, G.nodes = {41, 33, 29};
+  std::vector<Vec<3>> x(60000);
+  uint64_t state = 12345;
+  auto uniform = [&] {  // (a fixed sequence: the test is the same on every machine)
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return double(state >> 11) * 0x1.0p-53;
+  };
+  const Vec<3> lo = G.origin + Vec<3>::Constant(2 * G.h), span(9.5 - 4 * G.h, 7.5 - 4 * G.h, 6.5 - 4 * G.h);
+  for (auto& p : x) p = lo + Vec<3>(uniform() * span.x(), uniform() * span.y(), uniform() * span.z());
+  detail::FrontParticles near;
+  const Vec<3> box_lo(2.0, 1.0, 2.0), box_hi(3.0, 2.5, 3.0);
+  for (int round = 0; round < 12; ++round) {
+    // Every particle moves by at most `step`, in any direction; travel bounds the sum. (Odd rounds:
+    // none moves and the box stays: the last bins serve. Every fourth: more than the list's margin.)
+    const double step = (round % 2 == 1 ? 0.0 : round % 4 == 2 ? 1.2 : 0.05) * G.h;
+    for (auto& p : x) {
+      Vec<3> d(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5);
+      p += step * d / d.norm() * uniform();
+    }
+    near.travel += step;
+    const Vec<3> shift = 0.2 * (round / 2) * Vec<3>(G.h, -G.h, 0.5 * G.h);  // (the fronts move too)
+    detail::CellBins full;
+    const detail::CellBins& kept = near.bins_for(G, x, box_lo + shift, box_hi + shift);
+    full.build(G, x, box_lo + shift, box_hi + shift);
+    ASSERT_EQ(kept.lo, full.lo) << round;
+    ASSERT_EQ(kept.n, full.n) << round;
+    EXPECT_EQ(kept.begin, full.begin) << round;
+    EXPECT_EQ(kept.particle, full.particle) << round;
+    EXPECT_GT(full.particle.size(), 400u);
+  }
+}
+
+// The same through a run: the stepper's evaluations (with its list) against evaluations of the same
+// states that test every particle, the block flying at 80 m/s, so that it crosses cells and the list
+// is made again (the block widened so that the evaluated box does not reach the grid's edges in x, y).
+TEST(FrontParticles, AStepperThatKeepsThemEvaluatesAsAFullPassOnAFlyingBlock) {
+  json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/block_penny_crack.json");
+  s.erase("output");
+  s["bodies"][0]["shape"]["max"] = {30, 30, 10};
+  s["grid"]["max"] = {40, 40, 12};
+  s["cracks"][0]["ellipse"]["center"] = {15.3, 15.3, 5.5};
+  s["crack_tips"] = json::object();
+  Model<3> m = build_model<3>(s);
+  for (auto& v : m.particles.v) v += Vec<3>(80.0, 0.0, 0.0);
+  auto st = make_stepper<3>(m);
+  const auto no_acceleration = [](std::size_t) { return Vec<3>::Zero(); };  // (eq. 32: not read)
+  ASSERT_FALSE(m.crack_tips->volume_term);
+  for (int k = 0; k < 10; ++k) {
+    ASSERT_FALSE(test::advance(*st, 8));  // 10 x 8 steps: about 1.6 cells
+    const auto kept = st->crack_front_parameters(*m.crack_tips);
+    const auto full = crack_front_records<LinearShape>(m, *m.crack_tips, no_acceleration);
+    ASSERT_EQ(kept.size(), full.size());
+    ASSERT_GT(kept.size(), 10u);
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      EXPECT_EQ(kept[i].J1, full[i].J1) << k << " " << i;
+      EXPECT_EQ(kept[i].J2, full[i].J2) << k << " " << i;
+      EXPECT_EQ(kept[i].KI, full[i].KI) << k << " " << i;
+      EXPECT_EQ(kept[i].KII, full[i].KII) << k << " " << i;
+      EXPECT_EQ(kept[i].KIII, full[i].KIII) << k << " " << i;
+    }
+  }
+  EXPECT_GT(m.particles.u[0].x(), 1.2e-3);  // (m: the block has crossed cells)
+}
+
 // uGIMP and crack contact on faces that stay apart: the rod of seed 000 section 4.1 (7.5 mm cells,
 // step load, undamped) run to 100 us with its frictionless contact (displacement detection) and with
 // none. Its faces never touch (no contact: the opening stays positive behind the whole front), so

@@ -6,13 +6,14 @@
 // range of the ratios. Wall-clock time is the figure; printed beside it are the ratio of the process
 // CPU times (with one thread, insensitive to time slices lost to other processes on a shared
 // machine) and the ratio of the fastest block of each (the least disturbed by other processes).
-// Usage: cleave-bench-crack [--case dcb|rod3d|fronts|tips|costs] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]
+// Usage: cleave-bench-crack [--case dcb|rod3d|fronts|tips|costs] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked|evaluation] [--null]
 // --case costs: what `cleave run` reports each part costs (core/part_costs.hpp), the DCB (2 mm cells
 // unless --cell) run to its end with its crack and J/K at the tip, and without the crack; exits 1
 // unless the uncracked run's crack fields, contact and J/K parts recorded no scope and no time.
 // --case fronts: the cost of evaluating J and K at every front node (crack_tips in 3D, issue 17) against
 // one step, the rod at 3 mm cells (480 000 particles) stepped to 30 us (the load has reached the crack), then a step and
-// an evaluation alternately (which first alternates too), R = 10 repetitions.
+// an evaluation alternately (which first alternates too), R = 10 repetitions; --only evaluation: R evaluations
+// of the state at 30 us and nothing else (for a profiler).
 // --case tips: the same for the 2D tip of the DCB (0.5 mm cells unless --cell, 57 600 particles) with each
 // contour setting of docs/validation.md's "The defaults", R = 20 repetitions each.
 // --case rod3d: the same for 3D cracks, the quarter rod of seed 000 §4.1 (data/scenes/rod_elliptical_crack.json)
@@ -120,11 +121,19 @@ Alternation alternate(int reps, Step&& step, Eval&& eval, const char* what) {
 // the crack still at rest, its index and keys kept from step to step.)
 constexpr double kRodLoadedAt = 30e-6;
 
-int bench_fronts(const nlohmann::json& scene, int reps) {
+int bench_fronts(const nlohmann::json& scene, int reps, const std::string& only) {
   Model<3> m = build_model<3>(scene);
   auto stepper = make_stepper<3>(m);
   while (stepper->time() < kRodLoadedAt) stepper->step();
   std::size_t nodes = 0;
+  if (only == "evaluation") {  // (for a profiler: the evaluations alone, of one state)
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int r = 0; r < reps; ++r) nodes = stepper->crack_front_parameters(*m.crack_tips).size();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("rod (3D, elliptical crack), %zu particles, %d threads, %zu front nodes: evaluation %.2f ms (mean of %d)\n",
+                m.particles.size(), omp_get_max_threads(), nodes, 1e3 * s / reps, reps);
+    return 0;
+  }
   const Alternation a = alternate(reps, [&] { stepper->step(); },
                                   [&] { nodes = stepper->crack_front_parameters(*m.crack_tips).size(); },
                                   "evaluation of the front nodes");
@@ -216,16 +225,16 @@ int main(int argc, char** argv) {
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else if (a == "--null") null_test = true;
     else ok = false;
-    if (!ok || (!only.empty() && only != "cracked" && only != "uncracked") ||
+    if (!ok || (!only.empty() && only != "cracked" && only != "uncracked" && (only != "evaluation" || which != "fronts")) ||
         (which != "dcb" && which != "rod3d" && which != "fronts" && which != "tips" && which != "costs")) {
-      std::fprintf(stderr, "usage: cleave-bench-crack [--case dcb|rod3d|fronts|tips|costs] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked] [--null]\n");
+      std::fprintf(stderr, "usage: cleave-bench-crack [--case dcb|rod3d|fronts|tips|costs] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked|evaluation] [--null]\n");
       return a == "--help" ? 0 : 2;
     }
   }
   if (which == "fronts") {
     nlohmann::json scene = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/rod_elliptical_crack.json");
     scene["resolution"] = cell > 0 ? cell : 3.0;
-    return bench_fronts(scene, reps > 0 ? reps : 10);
+    return bench_fronts(scene, reps > 0 ? reps : 10, only);
   }
   if (which == "rod3d") {  // seed 000 §4.1, its quarter model refined to >= 500 000 particles (3 mm: 480 000)
     nlohmann::json scene = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/rod_elliptical_crack.json");

@@ -18,12 +18,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
 #include "libmpm/core/parallel.hpp"
 #include "libmpm/crack/crossing3d.hpp"
 #include "libmpm/crack/front_parameters.hpp"
+#include "libmpm/mpm/crack_front_fit.hpp"
 #include "libmpm/mpm/crack_front_sums.hpp"
 #include "libmpm/mpm/crack_tip_eval.hpp"  // kCodCells
 #include "libmpm/mpm/model.hpp"
@@ -32,8 +34,11 @@
 namespace cleave {
 
 // accel(p): the acceleration of particle p in the last step (from the grid, with its own fields).
+// near (optional): the particles near the fronts kept by the caller between evaluations, with its
+// bound on how far particles have moved (FrontParticles); without it every particle is tested.
 template <class SF, class Accel>
-std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const crack::TipSettings& ts, Accel&& accel) {
+std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const crack::TipSettings& ts, Accel&& accel,
+                                                      detail::FrontParticles* near = nullptr) {
   using V = Vec<3>;
   using St = Stencil<3, SF>;
   using Sums = detail::FrontFieldSums;
@@ -63,16 +68,19 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
         for (std::size_t k = 0; k < c.fronts[f].nodes.size(); ++k)
           jobs.push_back({c.id, static_cast<int>(f), static_cast<int>(k)});
   // The particles binned in the box of everything the front nodes' evaluations touch.
-  detail::CellBins bins;
-  {
+  detail::CellBins local_bins;
+  const detail::CellBins& bins = [&]() -> const detail::CellBins& {
     V lo = V::Constant(INFINITY), hi = -lo;
     for (const Job& jb : jobs) {
       const V& x = m.cracks[jb.crack].points[m.cracks[jb.crack].fronts[jb.front].nodes[jb.node]];
       lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
     }
     const V margin = V::Constant(reach + 2.0 * h);
-    if (!jobs.empty()) bins.build(G, P.x, lo - margin, hi + margin);
-  }
+    if (jobs.empty()) return local_bins;
+    if (near) return near->bins_for(G, P.x, lo - margin, hi + margin);
+    local_bins.build(G, P.x, lo - margin, hi + margin);
+    return local_bins;
+  }();
   // Every particle-node line's field key, here and in the shared sums, from one binning of the triangles.
   std::array<int64_t, 3> tri_lo = bins.lo, tri_n = bins.n;  // the particles' box and two cells about it
   for (int d = 0; d < 3; ++d) {
@@ -96,11 +104,23 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     bool have_cod = false;  // (a crack point behind the node was found for them)
     std::vector<std::pair<int32_t, double>> inside;  // eq. 33's particles and their slab weights
     double slab_material = 0.0;  // the slab's share held by particles and their images
+    std::vector<int64_t> fit_cells;  // the cells that can hold the rigid-motion fit's particles
   };
   std::vector<State> state(jobs.size());
   detail::NodeSums shared;
+  detail::FitCells fits;
+  // The rigid motion's fit (as in 2D): the particles within a cell and a half of the contour's plane
+  // and within `fit` of the front, in the cells within fit_reach of the node whose centres lie within
+  // a cell and a half of the plane plus the cell's half-diagonal.
+  const double fit = contour_extent + 1.5 * h;
+  const double fit_reach = std::sqrt(fit * fit + 2.25 * h * h) * (1.0 + 1e-12);
   for (int pass = 0; pass < 2; ++pass) {
-  if (pass == 1) shared.build<SF>(m, bins, tris, need_of);
+  if (pass == 1) {
+    shared.build<SF>(m, bins, tris, need_of);
+    std::vector<int64_t> cells;
+    for (const State& S : state) cells.insert(cells.end(), S.fit_cells.begin(), S.fit_cells.end());
+    fits.pack(P, bins, cells);
+  }
 #pragma omp parallel for schedule(dynamic, 1) if (jobs.size() > 1)
   for (std::size_t j = 0; j < jobs.size(); ++j) {
     try {
@@ -113,9 +133,10 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     rec.x = f.x;
     rec.s = crack::front_arc_lengths(c, job.front)[job.node];
     if (!c.fronts[job.front].flags.empty()) rec.flag = c.fronts[job.front].flags[job.node];
-    // g(cell) for each non-empty cell of the bins within distance d of the node whose centre lies
-    // within `slab` of the contour's plane, in cell order.
-    const auto for_cells_within = [&](double d, double slab, auto&& g) {
+    // g(cell, plane, distance) for each non-empty cell of the bins within distance d of the node, in
+    // cell order: plane, the distance of its centre from the contour's plane; distance, the node's
+    // from the cell.
+    const auto for_cells_near = [&](double d, auto&& g) {
       const int r = static_cast<int>(std::ceil(d * inv_h));
       const auto [ci, cj, ck] = detail::CellBins::cell_of(G, f.x);
       for (int64_t a = ci - r; a <= ci + r; ++a)
@@ -124,10 +145,17 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
             const int64_t cell = bins.index(a, b, e);
             if (cell < 0 || bins.begin[cell] == bins.begin[cell + 1]) continue;
             const V corner = G.origin + h * V(a, b, e);
-            if (std::fabs((corner + V::Constant(0.5 * h) - f.x).dot(f.e3)) > slab) continue;
-            if ((f.x - f.x.cwiseMax(corner).cwiseMin(corner + V::Constant(h))).norm() > d) continue;
-            g(cell);
+            const double distance = (f.x - f.x.cwiseMax(corner).cwiseMin(corner + V::Constant(h))).norm();
+            if (distance > d) continue;
+            g(cell, std::fabs((corner + V::Constant(0.5 * h) - f.x).dot(f.e3)), distance);
           }
+    };
+    // g(cell) for each non-empty cell of the bins within distance d of the node whose centre lies
+    // within `slab` of the contour's plane, in cell order.
+    const auto for_cells_within = [&](double d, double slab, auto&& g) {
+      for_cells_near(d, [&](int64_t cell, double plane, double) {
+        if (plane <= slab) g(cell);
+      });
     };
 
     if (pass == 0) {
@@ -213,36 +241,40 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       const double z0 = (position - f.x[axis]) / f.e3[axis];
       if (std::fabs(f.e3[axis]) > 0.999 && std::fabs(z0) <= h) mirrors.push_back(z0);
     }
-    if (ts.volume_term || ts.out_of_plane_term) {
-      // A particle of the slab lies within `bound` of the node: inside the contour's extent in the
-      // plane, and within a cell of it along the front (three with a mirror plane).
-      const double s3max = mirrors.empty() ? h : 3.0 * h;
-      const double bound = std::sqrt(contour_extent * contour_extent + s3max * s3max) + 1e-9 * h;
-      // A cell whose centre lies more than two cells from the contour's plane holds no particle of
-      // the slab (half a cell, plus half a particle and the cell's half-diagonal) unless a mirror
-      // plane is near.
-      for_cells_within(bound, mirrors.empty() ? 2.0 * h : INFINITY, [&](int64_t cell) {
-        for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
-          const int32_t p = bins.particle[q];
-          const double s3 = (P.x[p] - f.x).dot(f.e3);
-          if (mirrors.empty() && std::fabs(s3) >= h) continue;  // (particles are at most a cell wide)
-          if (!crack::inside_front_contour(f, ts, h, P.x[p])) continue;
-          const double l = std::cbrt(P.volume0[p]);
-          const auto in_slab = [&](double c) {
-            return std::max(0.0, std::min(c + 0.5 * l, 0.5 * h) - std::max(c - 0.5 * l, -0.5 * h));
-          };
-          double in = in_slab(s3);
-          for (const double z0 : mirrors) in += in_slab(2.0 * z0 - s3);
-          if (in <= 0.0) continue;
-          S.inside.push_back({p, in / (l * h)});
-          S.slab_material += P.volume0[p] * in / l;
-          if (!ts.volume_term) continue;
-          St st;
-          st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
-          st.for_each_weight([&](int64_t n, double) { need.push_back(n); });
-        }
-      });
-    }
+    // One walk over the cells about the node for eq. 33's particles and the fit's cells.
+    // A particle of the slab lies within `bound` of the node: inside the contour's extent in the
+    // plane, and within a cell of it along the front (three with a mirror plane).
+    const bool slab_particles = ts.volume_term || ts.out_of_plane_term;
+    const double s3max = mirrors.empty() ? h : 3.0 * h;
+    const double bound = std::sqrt(contour_extent * contour_extent + s3max * s3max) + 1e-9 * h;
+    // A cell whose centre lies more than two cells from the contour's plane holds no particle of
+    // the slab (half a cell, plus half a particle and the cell's half-diagonal) unless a mirror
+    // plane is near.
+    const double slab_cells = mirrors.empty() ? 2.0 * h : INFINITY;
+    double last_volume = -1.0, l = 0.0;  // (cbrt of the last particle's volume: most particles share it)
+    for_cells_near(std::max(slab_particles ? bound : 0.0, fit_reach), [&](int64_t cell, double plane, double distance) {
+      if (distance <= fit_reach && plane <= 2.37 * h) S.fit_cells.push_back(cell);
+      if (!slab_particles || distance > bound || plane > slab_cells) return;
+      for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
+        const int32_t p = bins.particle[q];
+        const double s3 = (P.x[p] - f.x).dot(f.e3);
+        if (mirrors.empty() && std::fabs(s3) >= h) continue;  // (particles are at most a cell wide)
+        if (!crack::inside_front_contour(f, ts, h, P.x[p])) continue;
+        if (P.volume0[p] != last_volume) last_volume = P.volume0[p], l = std::cbrt(last_volume);
+        const auto in_slab = [&](double c) {
+          return std::max(0.0, std::min(c + 0.5 * l, 0.5 * h) - std::max(c - 0.5 * l, -0.5 * h));
+        };
+        double in = in_slab(s3);
+        for (const double z0 : mirrors) in += in_slab(2.0 * z0 - s3);
+        if (in <= 0.0) continue;
+        S.inside.push_back({p, in / (l * h)});
+        S.slab_material += P.volume0[p] * in / l;
+        if (!ts.volume_term) continue;
+        St st;
+        st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
+        st.for_each_weight([&](int64_t n, double) { need.push_back(n); });
+      }
+    });
     std::sort(need.begin(), need.end());
     need.erase(std::unique(need.begin(), need.end()), need.end());
     need_of[j] = std::move(need);
@@ -279,53 +311,19 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       return b < 0 ? -1 : slot[b];
     };
 
-    // The rigid motion of the material about the node (as in 2D): mean rotation and least-squares
-    // spin of the particles within a cell and a half of the contour, in the slab of the contour.
-    V theta = V::Zero(), omega = V::Zero();
-    int32_t nearest = -1;  // the particle nearest the node (its material gives mu, nu)
-    double nearest_d = INFINITY;
-    {
-      const double fit = contour_extent + 1.5 * h;
-      const auto in_fit = [&](int32_t p) {
-        const V d = P.x[p] - f.x;
-        return std::fabs(d.dot(f.e3)) <= 1.5 * h && (d - d.dot(f.e3) * f.e3).norm() <= fit;
-      };
-      // The cells that can hold the fit's particles: within fit_reach of the node, and within a cell
-      // and a half of its plane (the cell's centre within that plus its half-diagonal).
-      const double fit_reach = std::sqrt(fit * fit + 2.25 * h * h) * (1.0 + 1e-12);
-      std::vector<int32_t> fit_set;
-      double msum = 0.0;
-      V mx = V::Zero(), mv = V::Zero(), mth = V::Zero();
-      for_cells_within(fit_reach, 2.37 * h, [&](int64_t cell) {
+    // The rigid motion of the material about the node (FitCells), and the particle nearest the node
+    // (its material gives mu, nu).
+    const detail::FitCells::Motion motion = fits.fit(S.fit_cells, f.x, f.e3, 1.5 * h, fit);
+    const V theta = motion.theta, omega = motion.omega;
+    int32_t nearest = motion.nearest;
+    if (nearest < 0) {  // (no particle in those cells: the nearest within reach)
+      double nearest_d = INFINITY;
+      for_cells_within(reach, INFINITY, [&](int64_t cell) {
         for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
           const int32_t p = bins.particle[q];
           if (const double d = (P.x[p] - f.x).norm(); d < nearest_d) nearest_d = d, nearest = p;
-          if (!in_fit(p)) continue;
-          fit_set.push_back(p);
-          const double mp = P.mass[p];
-          msum += mp, mx += mp * P.x[p], mv += mp * P.v[p];
-          if (rotations) mth += mp * P.rotation3[p];
         }
       });
-      // (No particle in those cells: the nearest within reach.)
-      if (nearest < 0)
-        for_cells_within(reach, INFINITY, [&](int64_t cell) {
-          for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
-            const int32_t p = bins.particle[q];
-            if (const double d = (P.x[p] - f.x).norm(); d < nearest_d) nearest_d = d, nearest = p;
-          }
-        });
-      if (msum > 0.0) {
-        theta = mth / msum, mx /= msum, mv /= msum;
-        Mat<3> inertia = Mat<3>::Zero();
-        V moment = V::Zero();
-        for (const int32_t p : fit_set) {
-          const V r = P.x[p] - mx;
-          inertia += P.mass[p] * (r.squaredNorm() * Mat<3>::Identity() - r * r.transpose());
-          moment += P.mass[p] * r.cross(P.v[p] - mv);
-        }
-        if (inertia.determinant() > 0.0) omega = inertia.ldlt().solve(moment);
-      }
     }
     const auto v_rel = [&](int32_t p) { V v = P.v[p] - omega.cross(P.x[p] - f.x); return v; };
     const auto grad_u = [&](int32_t p) {
@@ -490,5 +488,19 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     if (done[j]) kept.push_back(out[j]);
   return kept;
 }
+
+// The evaluation compiled once per shape-function style in crack_front_eval.cpp (the stepper's
+// translation unit stays the hot loops' alone); accel as above.
+using FrontAcceleration = std::function<Vec<3>(std::size_t)>;
+template <class SF>
+std::vector<crack::FrontRecord> crack_front_records(const Model<3>& m, const crack::TipSettings& ts,
+                                                    const FrontAcceleration& accel,
+                                                    detail::FrontParticles* near = nullptr);
+extern template std::vector<crack::FrontRecord> crack_front_records<LinearShape>(const Model<3>&, const crack::TipSettings&,
+                                                                                 const FrontAcceleration&,
+                                                                                 detail::FrontParticles*);
+extern template std::vector<crack::FrontRecord> crack_front_records<UGimpShape>(const Model<3>&, const crack::TipSettings&,
+                                                                                const FrontAcceleration&,
+                                                                                detail::FrontParticles*);
 
 }  // namespace cleave

@@ -62,54 +62,132 @@ struct CellBins {
   }
   static std::array<int64_t, 3> cell_of(const GridGeometry<3>& G, const Vec<3>& x) {
     std::array<int64_t, 3> c;
-    const double inv_h = 1.0 / G.h;  // (as build's box test)
+    const double inv_h = 1.0 / G.h;  // (as cells_in_box's test)
     for (int d = 0; d < 3; ++d) c[d] = static_cast<int64_t>(std::floor((x[d] - G.origin[d]) * inv_h));
     return c;
   }
-  // The particles of x in the grid's cells that meet [box_lo, box_hi]. One pass over all particles
-  // in blocks, a branch-free test per particle that vectorises (the box is a small part of a large
-  // body: most particles are left out); then those kept, counted and placed by cell.
-  void build(const GridGeometry<3>& G, const std::vector<Vec<3>>& x, const Vec<3>& box_lo, const Vec<3>& box_hi) {
+  // The box of the grid's cells that meet [box_lo, box_hi] (clamped to the grid).
+  void set_box(const GridGeometry<3>& G, const Vec<3>& box_lo, const Vec<3>& box_hi) {
     const auto a = cell_of(G, box_lo), b = cell_of(G, box_hi);
     for (int d = 0; d < 3; ++d) {
       const int64_t cells = std::max(1, G.nodes[d] - 1);
       lo[d] = std::clamp<int64_t>(a[d], 0, cells - 1);
       n[d] = std::clamp<int64_t>(b[d], 0, cells - 1) - lo[d] + 1;
     }
+  }
+  // The particles of x in the grid's cells that meet [box_lo, box_hi], from one pass over all.
+  void build(const GridGeometry<3>& G, const std::vector<Vec<3>>& x, const Vec<3>& box_lo, const Vec<3>& box_hi) {
+    set_box(G, box_lo, box_hi);
+    std::vector<int64_t> cell(x.size());
+    cells_in_box(G, x, lo, n, nullptr, x.size(), cell.data());
+    std::vector<int32_t> kept;
+    for (std::size_t p = 0; p < x.size(); ++p)
+      if (cell[p] >= 0) kept.push_back(static_cast<int32_t>(p));
+    std::erase(cell, -1);
+    place(kept.data(), cell.data(), kept.size());
+  }
+  // The bins of particles ids[k] in cells cell[k] of the box (-1: none), k < count, ids in index order.
+  void place(const int32_t* ids, const int64_t* cell, std::size_t count) {
     const int64_t total = n[0] * n[1] * n[2];
     begin.assign(total + 1, 0);
-    // In the box: lo <= (x - origin) / h < lo + n along each axis (cell_of's arithmetic).
-    double blo[3], bhi[3];
-    for (int d = 0; d < 3; ++d) blo[d] = static_cast<double>(lo[d]), bhi[d] = static_cast<double>(lo[d] + n[d]);
-    const double ox = G.origin.x(), oy = G.origin.y(), oz = G.origin.z(), inv_h = 1.0 / G.h;
-    constexpr std::size_t kBlock = 4096;
-    const std::size_t np = x.size(), blocks = (np + kBlock - 1) / kBlock;
-    std::vector<std::vector<std::pair<int32_t, int64_t>>> kept(blocks);  // (particle, cell), in particle order
-#pragma omp parallel for schedule(static) if (np > 65536)
-    for (std::size_t k = 0; k < blocks; ++k) {
-      const std::size_t p0 = k * kBlock, p1 = std::min(np, p0 + kBlock);
-      uint8_t in[kBlock];
-      int any = 0;
-      for (std::size_t p = p0; p < p1; ++p) {
-        const double u = (x[p].x() - ox) * inv_h, v = (x[p].y() - oy) * inv_h, w = (x[p].z() - oz) * inv_h;
-        const int i = (u >= blo[0]) & (u < bhi[0]) & (v >= blo[1]) & (v < bhi[1]) & (w >= blo[2]) & (w < bhi[2]);
-        in[p - p0] = static_cast<uint8_t>(i), any |= i;
-      }
-      if (!any) continue;
-      for (std::size_t p = p0; p < p1; ++p)
-        if (in[p - p0]) {
-          const auto c = cell_of(G, x[p]);
-          kept[k].push_back({static_cast<int32_t>(p), index(c[0], c[1], c[2])});
-        }
-    }
-    for (const auto& b : kept)
-      for (const auto& [p, c] : b) ++begin[c + 1];
+    for (std::size_t k = 0; k < count; ++k)
+      if (cell[k] >= 0) ++begin[cell[k] + 1];
     for (int64_t c = 0; c < total; ++c) begin[c + 1] += begin[c];
     particle.resize(begin[total]);
     std::vector<int64_t> next(begin.begin(), begin.end() - 1);
-    for (const auto& b : kept)
-      for (const auto& [p, c] : b) particle[next[c]++] = p;
+    for (std::size_t k = 0; k < count; ++k)
+      if (cell[k] >= 0) particle[next[cell[k]]++] = ids[k];
   }
+
+  // For each particle ids[q] (or q, ids null), q < count: its cell's index in the box of cells c0 ..
+  // c0 + span - 1, or -1 outside it, into cell[q]. A branch-free test per particle that vectorises
+  // (most particles lie outside the box).
+  // Returns the least distance of these particles to a face of their cells, in cells: none of them
+  // changes cell before it has moved that far.
+  static double cells_in_box(const GridGeometry<3>& G, const std::vector<Vec<3>>& x, const std::array<int64_t, 3>& c0,
+                             const std::array<int64_t, 3>& span, const int32_t* ids, std::size_t count, int64_t* cell) {
+    // In the box: c0 <= (x - origin) / h < c0 + span along each axis (cell_of's arithmetic).
+    double blo[3], bhi[3];
+    for (int d = 0; d < 3; ++d) blo[d] = static_cast<double>(c0[d]), bhi[d] = static_cast<double>(c0[d] + span[d]);
+    const double ox = G.origin.x(), oy = G.origin.y(), oz = G.origin.z(), inv_h = 1.0 / G.h;
+    double slack = 1.0;
+#pragma omp parallel for schedule(static) if (count > 65536) reduction(min : slack)
+    for (std::size_t q = 0; q < count; ++q) {
+      const Vec<3>& y = x[ids ? static_cast<std::size_t>(ids[q]) : q];
+      const double u = (y.x() - ox) * inv_h, v = (y.y() - oy) * inv_h, w = (y.z() - oz) * inv_h;
+      const bool in = (u >= blo[0]) & (u < bhi[0]) & (v >= blo[1]) & (v < bhi[1]) & (w >= blo[2]) & (w < bhi[2]);
+      const double fu = std::floor(u), fv = std::floor(v), fw = std::floor(w);
+      const int64_t i = static_cast<int64_t>(fu) - c0[0], j = static_cast<int64_t>(fv) - c0[1],
+                    k = static_cast<int64_t>(fw) - c0[2];
+      cell[q] = in ? (i * span[1] + j) * span[2] + k : -1;
+      const double a = std::min(u - fu, fu + 1.0 - u), b = std::min(v - fv, fv + 1.0 - v), c = std::min(w - fw, fw + 1.0 - w);
+      slack = std::min(slack, std::min(a, std::min(b, c)));
+    }
+    return slack;
+  }
+};
+
+// The particles near the fronts and their bins, kept from one evaluation to the next by the stepper
+// that owns this (bins_for). A list of the particles of a box of cells two cells wider on each side
+// than the box an evaluation needs, made in one pass over all particles, holds every particle of a
+// later evaluation's box as long as that box, grown by how far a particle may have moved since
+// (travel, a bound the stepper keeps), lies in the listed one: an evaluation then tests the list
+// instead of all particles, and keeps the last bins when no particle of the list changed cell.
+struct FrontParticles {
+  double travel = 0.0;  // set by the owner before each evaluation: its bound on any particle's path
+
+  // The particles of x in the grid's cells that meet [box_lo, box_hi], binned: the same bins as
+  // CellBins::build's.
+  const CellBins& bins_for(const GridGeometry<3>& G, const std::vector<Vec<3>>& x, const Vec<3>& box_lo,
+                           const Vec<3>& box_hi) {
+    CellBins box;
+    box.set_box(G, box_lo, box_hi);
+    std::array<int64_t, 3> cells;
+    for (int d = 0; d < 3; ++d) cells[d] = std::max(1, G.nodes[d] - 1);
+    bool holds = particles_ == x.size() && travel >= listed_at_;
+    if (holds) {
+      // A particle outside the listed box then has since moved by at most `moved` cells (+ rounding).
+      const int64_t moved = static_cast<int64_t>(std::ceil((travel - listed_at_) / G.h + 1e-9));
+      for (int d = 0; d < 3; ++d)
+        holds = holds && (box.lo[d] - moved >= lo_[d] || lo_[d] == 0) &&
+                (box.lo[d] + box.n[d] - 1 + moved <= hi_[d] || hi_[d] == cells[d] - 1);
+    }
+    if (!holds) {  // list afresh
+      std::array<int64_t, 3> span;
+      for (int d = 0; d < 3; ++d) {
+        lo_[d] = std::max<int64_t>(0, box.lo[d] - 2), hi_[d] = std::min(cells[d] - 1, box.lo[d] + box.n[d] + 1);
+        span[d] = hi_[d] - lo_[d] + 1;
+      }
+      std::vector<int64_t> in(x.size());
+      CellBins::cells_in_box(G, x, lo_, span, nullptr, x.size(), in.data());
+      list_.clear();
+      for (std::size_t p = 0; p < x.size(); ++p)
+        if (in[p] >= 0) list_.push_back(static_cast<int32_t>(p));
+      listed_at_ = travel, particles_ = x.size();
+      cell_.clear();
+    }
+    // No listed particle has changed cell while none can have moved as far as the nearest was from
+    // a face of its cell when the cells were taken.
+    if (holds && box.lo == bins_.lo && box.n == bins_.n && travel < same_cells_until_) return bins_;
+    next_.resize(list_.size());
+    const double slack = CellBins::cells_in_box(G, x, box.lo, box.n, list_.data(), list_.size(), next_.data());
+    same_cells_until_ = travel + (slack - 1e-9) * G.h;  // (less the rounding of the cell coordinates)
+    if (box.lo != bins_.lo || box.n != bins_.n || next_ != cell_) {
+      box.place(list_.data(), next_.data(), list_.size());
+      bins_ = std::move(box);
+      cell_.swap(next_);
+    }
+    return bins_;
+  }
+
+ private:
+  std::vector<int32_t> list_;           // in index order
+  std::array<int64_t, 3> lo_{}, hi_{};  // the listed box (cells, inclusive)
+  double listed_at_ = 0.0;              // travel when listed
+  std::size_t particles_ = 0;           // the model's particle count then (0: nothing listed)
+  std::vector<int64_t> cell_, next_;    // per listed particle: its cell in bins_'s box, or -1 (next_: scratch)
+  double same_cells_until_ = -1.0;      // travel until which no listed particle can change cell
+  CellBins bins_;
 };
 
 // The triangles of every crack binned by grid cell over a box of cells (cells lo .. lo + n - 1), each

@@ -38,6 +38,7 @@ class MpmStepper final : public Stepper<Dim> {
       all_linear_elastic_ = all_linear_elastic_ && dynamic_cast<const LinearElastic<Dim>*>(mat.get()) != nullptr;
     if (!m.cracks.empty() || m.body_contact.active()) cf_ = std::make_unique<CrackFields<Dim, SF>>(m, grid_, kin_);
     if (m.spin_transfer) spin_ = std::make_unique<SpinTransfer<Dim>>(m);
+    track_travel_ = Dim == 3 && cf_ && m.crack_tips.has_value();
   }
 
   std::string take_warning() override {
@@ -70,7 +71,9 @@ class MpmStepper final : public Stepper<Dim> {
   std::vector<crack::FrontRecord> crack_front_parameters(const crack::TipSettings& ts) override {
     if constexpr (Dim == 3) {
       if (!cf_) return {};
-      return evaluate_crack_fronts<SF>(m_, ts, [&](std::size_t p) { return particle_acceleration(p); });
+      front_particles_.travel = travel_;
+      return crack_front_records<SF>(m_, ts, [&](std::size_t p) { return particle_acceleration(p); },
+                                     track_travel_ ? &front_particles_ : nullptr);
     } else {
       return {};
     }
@@ -131,7 +134,8 @@ class MpmStepper final : public Stepper<Dim> {
     finish_forces();  // Task 3, grid part
     task4_update_momenta(dt);
     const bool late_update = traits_.update_after_move || traits_.reextrapolate;
-    StepProblem problem = task5_update_particles(dt, traits_.reextrapolate, /*move=*/!late_update);
+    StepProblem problem = track_travel_ ? task5_update_particles<true>(dt, traits_.reextrapolate, !late_update)
+                                        : task5_update_particles<false>(dt, traits_.reextrapolate, !late_update);
     if (traits_.reextrapolate) {  // Task 6c
       apply_momentum_conditions();
       crack_contact();
@@ -390,6 +394,8 @@ class MpmStepper final : public Stepper<Dim> {
   // Task 5 (eq. 30): particle velocities, and position increments that are applied now or, when a
   // later stress update still needs the start-of-step shape functions, after it. With
   // reextrapolate, the new particle momenta go straight back to the grid (Task 6c, eq. 31).
+  // kTravel: travel_ follows the step's longest move (only runs that evaluate 3D crack fronts use it).
+  template <bool kTravel>
   StepProblem task5_update_particles(double dt, bool reextrapolate, bool move) {
     constexpr long none = std::numeric_limits<long>::max();
     // Two checks: a velocity that is not finite, and (else) a particle that left the grid. Of each,
@@ -400,7 +406,16 @@ class MpmStepper final : public Stepper<Dim> {
       while (p < cur && !a.compare_exchange_weak(cur, p)) {
       }
     };
+    // The longest move of the step (its square), for travel_: raised rarely, read without a fence.
+    std::atomic<double> longest{0.0};
     auto finish = [&](std::size_t p, const Vec<Dim>& dx) CLEAVE_INLINE {
+      if constexpr (kTravel) {
+        if (const double d2 = dx.squaredNorm(); d2 > longest.load(std::memory_order_relaxed)) {
+          double cur = longest.load(std::memory_order_relaxed);
+          while (d2 > cur && !longest.compare_exchange_weak(cur, d2, std::memory_order_relaxed)) {
+          }
+        }
+      }
       if (!P_.v[p].allFinite()) lowest(bad, static_cast<long>(p));
       else if (!stencil_inside<Dim, SF>(G_, inv_h_, P_.x[p] + dx)) lowest(left, static_cast<long>(p));
       if (move) {
@@ -459,6 +474,7 @@ class MpmStepper final : public Stepper<Dim> {
         else gather_pass(body, [](std::size_t) {});
       }
     }
+    if constexpr (kTravel) travel_ += std::sqrt(longest.load());  // (a non-finite move stops the run below)
     // Both checks tripped: the second particle is named once the step has moved it (step()).
     const long b = bad.load(), l = left.load();
     also_left_ = b != none && l != none ? l : -1;
@@ -542,6 +558,12 @@ class MpmStepper final : public Stepper<Dim> {
   StripOrder<Dim> order_;
   SchemeTraits traits_;
   double time_ = 0.0, external_work_ = 0.0;
+  // A bound on how far any particle has moved since the stepper was made: the sum of each step's
+  // longest move, followed where the scene evaluates 3D crack fronts. The front evaluation keeps its
+  // particles near the fronts while this stays small.
+  bool track_travel_ = false;
+  double travel_ = 0.0;
+  detail::FrontParticles front_particles_;
   long step_ = 0;
   long also_left_ = -1;  // a particle that left the grid in a step that also found a non-finite velocity
   int ftz_threads_ = 0;
