@@ -560,7 +560,8 @@ class MpmStepper final : public Stepper<Dim> {
   double time_ = 0.0, external_work_ = 0.0;
   // A bound on how far any particle has moved since the stepper was made: the sum of each step's
   // longest move, followed where the scene evaluates 3D crack fronts. The front evaluation keeps its
-  // particles near the fronts while this stays small.
+  // particles near the fronts while this stays small. (Particles move only in Task 5 and its
+  // deferred move: code that moved them otherwise would have to add that move here.)
   bool track_travel_ = false;
   double travel_ = 0.0;
   detail::FrontParticles front_particles_;
