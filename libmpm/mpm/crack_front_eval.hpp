@@ -150,13 +150,6 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
             g(cell, std::fabs((corner + V::Constant(0.5 * h) - f.x).dot(f.e3)), distance);
           }
     };
-    // g(cell) for each non-empty cell of the bins within distance d of the node whose centre lies
-    // within `slab` of the contour's plane, in cell order.
-    const auto for_cells_within = [&](double d, double slab, auto&& g) {
-      for_cells_near(d, [&](int64_t cell, double plane, double) {
-        if (plane <= slab) g(cell);
-      });
-    };
 
     if (pass == 0) {
     State& S = state[j];
@@ -318,7 +311,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     int32_t nearest = motion.nearest;
     if (nearest < 0) {  // (no particle in those cells: the nearest within reach)
       double nearest_d = INFINITY;
-      for_cells_within(reach, INFINITY, [&](int64_t cell) {
+      for_cells_near(reach, [&](int64_t cell, double, double) {
         for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
           const int32_t p = bins.particle[q];
           if (const double d = (P.x[p] - f.x).norm(); d < nearest_d) nearest_d = d, nearest = p;

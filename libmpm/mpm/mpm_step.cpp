@@ -408,14 +408,13 @@ class MpmStepper final : public Stepper<Dim> {
     };
     // The longest move of the step (its square), for travel_: raised rarely, read without a fence.
     std::atomic<double> longest{0.0};
-    auto finish = [&](std::size_t p, const Vec<Dim>& dx) CLEAVE_INLINE {
-      if constexpr (kTravel) {
-        if (const double d2 = dx.squaredNorm(); d2 > longest.load(std::memory_order_relaxed)) {
-          double cur = longest.load(std::memory_order_relaxed);
-          while (d2 > cur && !longest.compare_exchange_weak(cur, d2, std::memory_order_relaxed)) {
-          }
-        }
+    auto highest = [](std::atomic<double>& a, double v) CLEAVE_INLINE {
+      double cur = a.load(std::memory_order_relaxed);
+      while (v > cur && !a.compare_exchange_weak(cur, v, std::memory_order_relaxed)) {
       }
+    };
+    auto finish = [&](std::size_t p, const Vec<Dim>& dx) CLEAVE_INLINE {
+      if constexpr (kTravel) highest(longest, dx.squaredNorm());
       if (!P_.v[p].allFinite()) lowest(bad, static_cast<long>(p));
       else if (!stencil_inside<Dim, SF>(G_, inv_h_, P_.x[p] + dx)) lowest(left, static_cast<long>(p));
       if (move) {
