@@ -167,8 +167,8 @@ json loaded_dcb(double omega) {
 }
 
 // J at the inner tip every `every` steps to 1 ms: (time in ms, J1).
-std::vector<std::pair<double, double>> dcb_J_history(double omega, int every = 25) {
-  Model<2> m = build_model<2>(loaded_dcb(omega));
+std::vector<std::pair<double, double>> dcb_J_history(const json& scene, int every = 25) {
+  Model<2> m = build_model<2>(scene);
   auto st = make_stepper<2>(m);
   const crack::TipSettings ts;  // the defaults
   std::vector<std::pair<double, double>> out;
@@ -185,10 +185,13 @@ std::vector<std::pair<double, double>> dcb_J_history(double omega, int every = 2
 // (0.5 - 1 ms). It MISSES and is left out of the suite (run it with --gtest_also_run_disabled_tests;
 // CLEAVE_DCB_TRACE=1 prints both histories): the largest difference was 33 % with the stress turned
 // (rotate_with_spin) but without spin_transfer, 21.6 % with spin_transfer (each crack on its own spin
-// fit), 19.8 % with the cracks following the scene's spin; at rest J rings by +-2 % about 13.7 J/m^2,
-// spinning by +-10 %. What remains is not traced (docs/validation.md, "Spinning bodies"). About 10 s.
+// fit), 19.8 % with the cracks following the scene's spin; 22.3 % since contact no longer acts at the
+// mouth point beyond the edge (the same as without contact: with linear shape functions the spinning
+// J rings by +-4 % from sample to sample; uGIMP: 20.7 -> 8.1 %). Part of it is physical: started
+// spinning at once, the arms swing open under their centrifugal load (docs/validation.md, "Spinning
+// bodies"). About 10 s.
 TEST(CrackRotation, DISABLED_ALoadedDcbSpinningAtATenthOfARadianPerMillisecondHasTheJItHasAtRest) {
-  const auto rest = dcb_J_history(0.0), spin = dcb_J_history(0.1);
+  const auto rest = dcb_J_history(loaded_dcb(0.0)), spin = dcb_J_history(loaded_dcb(0.1));
   ASSERT_EQ(rest.size(), spin.size());
   ASSERT_FALSE(rest.empty());
   double worst = 0.0, worst_t = 0.0, Jmax = 0.0;
@@ -206,6 +209,30 @@ TEST(CrackRotation, DISABLED_ALoadedDcbSpinningAtATenthOfARadianPerMillisecondHa
               "(J up to %.3f J/m^2)\n",
               rest.back().second, spin.back().second, 100 * worst, worst_t, Jmax);
   EXPECT_GT(rest.back().second, 1.0);  // loaded: J of the order of the static 9 J/m^2
+}
+
+// The DCB's crack is drawn from x = -2 mm, a cell beyond the loaded edge: its first point lies
+// outside the material. Its tracked surfaces followed fields that the arms' end particles graze, and
+// in the spinning DCB they drifted shut (5 cm/s); contact then held the mouth's nodes from 0.52 ms on
+// and the arms stopped vibrating (J up to 15 % off the same run without contact). The faces stay
+// apart in this run once loaded (at the start, still closed, contact may act: 2e-8 of J measured), so
+// frictionless contact must leave it as it is without contact, to 1e-6 of J. uGIMP (the default shape
+// functions): about 10 s.
+TEST(CrackRotation, ASpinningDcbWhoseFacesStayApartRunsAsItDoesWithoutContact) {
+  const auto run = [](const char* law) {
+    json scene = loaded_dcb(0.1);
+    scene["mpm"]["shape_function"] = "ugimp";
+    scene["cracks"][0]["contact"]["law"] = law;
+    return dcb_J_history(scene, 50);
+  };
+  const auto with = run("frictionless"), without = run("none");
+  ASSERT_EQ(with.size(), without.size());
+  ASSERT_FALSE(with.empty());
+  double Jmax = 0.0;
+  for (const auto& [t, J] : without) Jmax = std::max(Jmax, J);
+  EXPECT_GT(Jmax, 1.0);  // loaded
+  for (std::size_t i = 0; i < with.size(); ++i)
+    EXPECT_NEAR(with[i].second, without[i].second, 1e-6 * Jmax) << "t = " << with[i].first << " ms";
 }
 
 // The study behind the figures: every law and detection, linear and uGIMP, at 0.1 and 1 rad/ms.
