@@ -235,6 +235,34 @@ TEST(CrackRotation, ASpinningDcbWhoseFacesStayApartRunsAsItDoesWithoutContact) {
     EXPECT_NEAR(with[i].second, without[i].second, 1e-6 * Jmax) << "t = " << with[i].first << " ms";
 }
 
+// The split of J into K_I and K_II reads the faces' openings behind the tip from each face's field,
+// whose mass centre lies about 3/8 of a cell off the crack on its side: turned with the body, the
+// centres' separation read as an opening (tangential: the turned angle times 3/4 of a cell, ten
+// times the DCB's normal opening by 0.09 rad; K_II / K_I = -11). A DCB loaded in mode I splits into
+// K_I alone whether it spins or not, up to the discrete crack's own K_II off the grid's axes: the DCB
+// at rest turned 30 degrees reads K_II / K_I = -3.7 % (docs/validation.md, "The defaults", a miss of
+// the 1 %). Asserted: |K_II| / K_I below that 3.7 % once loaded (from 0.5 ms; largest
+// measured 1.05 %; 5 samples above 1 %). uGIMP: about 5 s.
+TEST(CrackRotation, ASpinningDcbLoadedInModeOneHasNoKII) {
+  json scene = loaded_dcb(0.1);
+  scene["mpm"]["shape_function"] = "ugimp";
+  Model<2> m = build_model<2>(scene);
+  auto st = make_stepper<2>(m);
+  const crack::TipSettings ts;
+  const long steps = std::lround(1.0e-3 / m.dt);
+  int read = 0;
+  for (long k = 1; k <= steps; ++k) {
+    ASSERT_FALSE(st->step());
+    if (k % 50 != 0 || st->time() < 0.5e-3) continue;
+    for (const auto& t : st->crack_tip_parameters(ts)) {
+      ++read;
+      EXPECT_GT(t.KI, 0.0) << "t = " << st->time() * 1e3 << " ms";
+      EXPECT_LT(std::fabs(t.KII), 0.037 * t.KI) << "t = " << st->time() * 1e3 << " ms: K_I " << t.KI << ", K_II " << t.KII;
+    }
+  }
+  EXPECT_GT(read, 20);
+}
+
 // The study behind the figures: every law and detection, linear and uGIMP, at 0.1 and 1 rad/ms.
 // Environment: CLEAVE_SPIN_ANGLE (radians, default 1), CLEAVE_SPIN_OMEGA (rad/ms; default both).
 // Run with --gtest_also_run_disabled_tests --gtest_filter='CrackRotation.DISABLED_Study'.

@@ -70,6 +70,7 @@ struct TipFieldSums {
   Vec<3> stress = Vec<3>::Zero();  // m (sxx, syy, sxy)
   Mat<2> grad_u = Mat<2>::Zero();  // m du_i/dx_j
   Vec<2> u = Vec<2>::Zero(), v = Vec<2>::Zero();
+  Vec<2> X = Vec<2>::Zero();  // m (x - u): the reference position (the openings' rotation, below)
 };
 
 // The sums of eq. 36 per (node, field key) over a box of nodes about a tip: a list per node, its
@@ -199,9 +200,14 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       // with the relative gradients they carry the centrifugal body force, the physical part.
       // The particles within the square of side 2 reach about the tip (reach exceeds the rigid fit's
       // radius): the passes below test only these, in particle order.
+      // (and the cracked body's mean rotation, for the openings below)
       std::vector<std::size_t> around;
-      for (std::size_t p = 0; p < P.size(); ++p)
+      double body_mass = 0.0, body_turn = 0.0;
+      for (std::size_t p = 0; p < P.size(); ++p) {
         if (std::abs(P.x[p].x() - f.tip.x()) <= reach && std::abs(P.x[p].y() - f.tip.y()) <= reach) around.push_back(p);
+        if (!other(p)) body_mass += P.mass[p], body_turn += P.mass[p] * P.rotation[p];
+      }
+      const double body_theta = body_mass > 0.0 ? body_turn / body_mass : 0.0;
       double omega = 0.0;
       {
         const double fit = contour_extent + 1.5 * h;
@@ -267,6 +273,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
           a.stress += mw * Vec<3>(s[0], s[1], s[3]);
           a.grad_u += mw * gu;
           a.u += mw * P.u[p];
+          a.X += mw * (P.x[p] - P.u[p]);
           a.v += mw * vp;
           const double rho = mp / P.volume0[p];
           a.rho += mw * rho;
@@ -307,10 +314,11 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
           const double k = w / s.m;
           const double kinetic = 0.5 * (s.rho_vv - 2.0 * v_tip.dot(s.rho_v) + s.rho * v_tip.squaredNorm());
           q.energy += k * (s.energy + kinetic), q.stress += k * s.stress, q.grad_u += k * s.grad_u, q.u += k * s.u;
+          q.X += k * s.X;
           wsum += w;
         });
         if (!in_grid || !(wsum > 0.0)) return false;  // outside the grid or the material
-        q.energy /= wsum, q.stress /= wsum, q.grad_u /= wsum, q.u /= wsum;
+        q.energy /= wsum, q.stress /= wsum, q.grad_u /= wsum, q.u /= wsum, q.X /= wsum;
         q.m = 1.0;
         return true;
       };
@@ -377,6 +385,19 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       // the tip) holds the openings of the crack's earlier direction: a small kink's first-order
       // intensities (Cotterell & Rice) carry them to the tip's direction. Without this a tip that
       // kinked by 70 degrees under mode II read the old mode II ratio and kinked by 70 degrees again.
+      // Each face's field holds the displacement of its mass centre, which started at X (sum m (x -
+      // u) / m), about 3/8 of a cell off the crack on its side: a rigid rotation R of the body turns
+      // their separation Xa - Xb without opening the faces, so the opening is ua - ub + (I - R)(Xa - Xb)
+      // (as contact's gap). Without it a loaded DCB spinning at 0.1 rad/ms read a tangential opening
+      // of about the angle turned times 3/4 of a cell, ten times its normal one by 0.09 rad (K_II / K_I
+      // = -11, K_I < 0 at times; now 1.05 % at most). R turns by the cracked body's mean rotation, not
+      // by the contour's (theta above): near a mixed-mode tip the material's rotation is the
+      // deformation's, which the fields' offset carries in together with its strain, and taking out
+      // the rotation alone moved the exact K field's K_II / K_I = 0.5 to 0.486 (from 0.504).
+      const auto unturned = [&](const V& dX) {
+        const double cs = std::cos(body_theta), sn = std::sin(body_theta);
+        return V(dX.x() - (cs * dX.x() - sn * dX.y()), dX.y() - (sn * dX.x() + cs * dX.y()));
+      };
       {
         double s11 = 0.0, s12 = 0.0, sum1 = 0.0;
         int read = 0;
@@ -385,7 +406,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
           const crack::CrackPoint cp = crack::point_behind_tip(c, end, (std::max(ts.radius, kCodCells) + 0.5 * k) * h);
           detail::TipFieldSums up, down;
           if (!interpolate(cp.x + probe * cp.normal, up) || !interpolate(cp.x - probe * cp.normal, down)) continue;
-          const V d = up.u - down.u;
+          const V d = up.u - down.u + unturned(up.X - down.X);
           double o1 = d.dot(f.e2), o2 = d.dot(f.e1);
           const V ahead(cp.normal.y(), -cp.normal.x());
           const double phi = std::atan2(ahead.x() * f.e1.y() - ahead.y() * f.e1.x(), ahead.dot(f.e1));
