@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "libmpm/core/parallel.hpp"
 #include "libmpm/crack/propagation.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/mpm/model.hpp"
@@ -180,6 +181,12 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
   for (const auto& c : m.cracks) {
     const uint8_t own = groups.empty() ? 0 : crack_group(m, groups, static_cast<std::size_t>(c.id));
     const auto other = [&](std::size_t p) { return !groups.empty() && groups[p] != own; };
+    // The cracked body's mass-weighted mean rotation: its rigid turn, for the openings below.
+    const auto turn = deterministic_sums<2>(P.size(), [&](std::size_t p, double* acc) {
+      if (other(p)) return;
+      acc[0] += P.mass[p], acc[1] += P.mass[p] * P.rotation[p];
+    });
+    const double body_theta = turn[0] > 0.0 ? turn[1] / turn[0] : 0.0;
     for (int end = 0; end < 2; ++end) {
       if (!c.tip[end]) continue;
       const crack::TipFrame f = crack::tip_frame(c, end);
@@ -200,14 +207,9 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       // with the relative gradients they carry the centrifugal body force, the physical part.
       // The particles within the square of side 2 reach about the tip (reach exceeds the rigid fit's
       // radius): the passes below test only these, in particle order.
-      // (and the cracked body's mean rotation, for the openings below)
       std::vector<std::size_t> around;
-      double body_mass = 0.0, body_turn = 0.0;
-      for (std::size_t p = 0; p < P.size(); ++p) {
+      for (std::size_t p = 0; p < P.size(); ++p)
         if (std::abs(P.x[p].x() - f.tip.x()) <= reach && std::abs(P.x[p].y() - f.tip.y()) <= reach) around.push_back(p);
-        if (!other(p)) body_mass += P.mass[p], body_turn += P.mass[p] * P.rotation[p];
-      }
-      const double body_theta = body_mass > 0.0 ? body_turn / body_mass : 0.0;
       double omega = 0.0;
       {
         const double fit = contour_extent + 1.5 * h;
