@@ -376,17 +376,6 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       rec.J1 = J.dot(f.e1) + faces;
       rec.J2 = J.dot(f.e2);
 
-      // Near-tip openings behind the tip from the contour radius, but at least 3 cells, over the
-      // next kCodPoints half cells: each face's field, probed just off the crack line on its side.
-      // Closer in, the tip's own cells distort the opening ratio (inclined centre crack, tan 30 =
-      // 0.577: 0.642, 0.609, 0.581, 0.573, 0.571 at 1-5 cells behind the tip; docs/validation.md).
-      // The ratio K_II / K_I is the least-squares slope of the tangential against the normal
-      // openings over those points (issue 14 item 4: one point's tangential opening carries the
-      // discrete faces' noise, which turned a growing crack off its plane).
-      // A point on a segment off e1 (the crack kinked since, less than the reading distance behind
-      // the tip) holds the openings of the crack's earlier direction: a small kink's first-order
-      // intensities (Cotterell & Rice) carry them to the tip's direction. Without this a tip that
-      // kinked by 70 degrees under mode II read the old mode II ratio and kinked by 70 degrees again.
       // Each face's field holds the displacement of its mass centre, which started at X (sum m (x -
       // u) / m), about 3/8 of a cell off the crack on its side: a rigid rotation R of the body turns
       // their separation Xa - Xb without opening the faces, so the opening is ua - ub + (I - R)(Xa - Xb)
@@ -400,6 +389,17 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         const double cs = std::cos(body_theta), sn = std::sin(body_theta);
         return V(dX.x() - (cs * dX.x() - sn * dX.y()), dX.y() - (sn * dX.x() + cs * dX.y()));
       };
+      // Near-tip openings behind the tip from the contour radius, but at least 3 cells, over the
+      // next kCodPoints half cells: each face's field, probed just off the crack line on its side.
+      // Closer in, the tip's own cells distort the opening ratio (inclined centre crack, tan 30 =
+      // 0.577: 0.642, 0.609, 0.581, 0.573, 0.571 at 1-5 cells behind the tip; docs/validation.md).
+      // The ratio K_II / K_I is the least-squares slope of the tangential against the normal
+      // openings over those points (issue 14 item 4: one point's tangential opening carries the
+      // discrete faces' noise, which turned a growing crack off its plane).
+      // A point on a segment off e1 (the crack kinked since, less than the reading distance behind
+      // the tip) holds the openings of the crack's earlier direction: a small kink's first-order
+      // intensities (Cotterell & Rice) carry them to the tip's direction. Without this a tip that
+      // kinked by 70 degrees under mode II read the old mode II ratio and kinked by 70 degrees again.
       {
         double s11 = 0.0, s12 = 0.0, sum1 = 0.0;
         int read = 0;
