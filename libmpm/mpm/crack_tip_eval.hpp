@@ -179,6 +179,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
   const std::vector<uint8_t> groups = particle_groups(m);
   std::vector<crack::TipRecord> out;
   for (const auto& c : m.cracks) {
+    if (!c.tip[0] && !c.tip[1]) continue;  // (no tip: nothing to evaluate, no pass over the particles)
     const uint8_t own = groups.empty() ? 0 : crack_group(m, groups, static_cast<std::size_t>(c.id));
     const auto other = [&](std::size_t p) { return !groups.empty() && groups[p] != own; };
     // The cracked body's mass-weighted mean rotation: its rigid turn, for the openings below.
