@@ -521,3 +521,53 @@ TEST(ParseCracks, ErrorsNameTheKeyPath) {
 }
 
 }  // namespace
+
+namespace {
+// A crack along y = 0 from x = 0 to 3 in segments of 1, with both ends cut back by `cut`.
+Crack2D cut_crack(double cut, bool start, bool end) {
+  Crack2D c;
+  c.points = {v(0, 0), v(1, 0), v(2, 0), v(3, 0)};
+  c.tip_cut = cut;
+  c.cut_end = {static_cast<uint8_t>(start), static_cast<uint8_t>(end)};
+  c.update_extent();
+  return c;
+}
+}  // namespace
+
+// ExplicitCrack::update_crossing: the crossing test's polyline is the crack less tip_cut at each cut
+// end, walking over whole segments; the crack's own points are untouched.
+TEST(TipCut, TheCrossingPolylineIsTheCrackCutBackAtItsCutEnds) {
+  const Crack2D c = cut_crack(1.25, true, false);
+  EXPECT_EQ(c.points[0], v(0, 0));
+  EXPECT_EQ(c.cross_first, 1);
+  EXPECT_EQ(c.cross_last, 3);
+  EXPECT_DOUBLE_EQ(c.cross_points[1].x(), 1.25);
+  // A node at x = 1 (on the crack, behind the cut) is no longer split; one at x = 2 still is.
+  EXPECT_EQ(crack_crossing(c, v(1, 0.5), v(1, 0)), Side::None);
+  EXPECT_EQ(crack_crossing(c, v(2, 0.5), v(2, 0)), Side::Above);
+  // Uncut, the same node is split (seed 002's rule).
+  EXPECT_EQ(crack_crossing(cut_crack(0.0, true, true), v(1, 0.5), v(1, 0)), Side::Above);
+  // Both ends: 0.5 off each, inside the end segments.
+  const Crack2D b = cut_crack(0.5, true, true);
+  EXPECT_EQ(b.cross_first, 0);
+  EXPECT_EQ(b.cross_last, 3);
+  EXPECT_DOUBLE_EQ(b.cross_points[0].x(), 0.5);
+  EXPECT_DOUBLE_EQ(b.cross_points[3].x(), 2.5);
+  EXPECT_EQ(crack_crossing(b, v(0.3, 0.5), v(0.3, -0.5)), Side::None);
+  EXPECT_EQ(crack_crossing(b, v(0.7, 0.5), v(0.7, -0.5)), Side::Above);
+  EXPECT_EQ(crack_crossing(b, v(2.7, -0.5), v(2.7, 0.5)), Side::None);
+  // A crack shorter than its two cuts crosses nothing.
+  const Crack2D gone = cut_crack(1.6, true, true);
+  EXPECT_LE(gone.cross_last, gone.cross_first);
+  EXPECT_EQ(crack_crossing(gone, v(1.5, 0.5), v(1.5, -0.5)), Side::None);
+}
+
+TEST(TipCut, OutOfRangeIsRefusedNamingTheKey) {
+  const json cracks = json::parse(R"([{"name": "c", "points": [[0, 0], [1, 0]], "tip_cut": 1.5}])");
+  try {
+    parse_cracks(cracks, "cracks", 1.0);
+    FAIL() << "expected a SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("cracks[0].tip_cut"), std::string::npos) << e.what();
+  }
+}

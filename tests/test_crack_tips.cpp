@@ -814,6 +814,29 @@ TEST_P(MixedMode, InclinedCentreCrackGivesKIAndKII) {
 INSTANTIATE_TEST_SUITE_P(Angles, MixedMode, ::testing::Values(30, 45),
                          [](const auto& info) { return "beta" + std::to_string(info.param); });
 
+// Issue 14: pure mode II K_II within 3 % at a = 8 cells with the default contour (4 cells, eq. 33).
+// The same plate under remote shear on all four faces. With seed 002's crossing rule the tips, on
+// nodes, left the node at each tip split for part of its particles (the crack line tilts with the
+// material by 0.02 cell) and the discrete crack ended a cell beyond them: K_II +9.2 %. Cut back by
+// cracks[i].tip_cut (0.45 cell, the default) the crack ends at its tips: -0.4 % (docs/validation.md,
+// "Where the discrete crack ends").
+TEST(PureModeTwo, ACentreCrackOfEightCellsUnderRemoteShearGivesKIIWithinThreePercent) {
+  InclinedSetup c;
+  c.beta_deg = 0;
+  c.shear = true;
+  crack::TipSettings r4;
+  r4.radius = 4, r4.volume_term = true;
+  const auto r = inclined_crack(c, {r4});
+  const double KII = 1e6 * std::sqrt(kPi * c.a_cells * 1e-3) * inclined_crack_loads(c).y();
+  ASSERT_EQ(r.tips[0].size(), 2u);
+  for (const auto& t : r.tips[0]) {
+    std::printf("pure mode II, tip %d: KII %.4g (exact %.4g, %+.2f %%), KI %.3g\n", t.end, t.KII, KII,
+                100 * (t.KII / KII - 1), t.KI);
+    EXPECT_NEAR(t.KII / KII, 1.0, 0.03);
+    EXPECT_LT(std::fabs(t.KI), 0.01 * std::fabs(KII));
+  }
+}
+
 // Study behind validation 4 (prints, asserts nothing): CLEAVE_BETA, CLEAVE_A_CELLS, CLEAVE_PLATE (side / a),
 // CLEAVE_SCHEME (stress update, default USAVG), CLEAVE_KEYS (prints the crossing of the particles about the
 // nodes on the crack line at x = 6 ... 10 cells at the end: which nodes the tip has left split),

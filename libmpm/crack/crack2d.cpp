@@ -188,7 +188,7 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
   std::map<std::string, std::size_t> names;
   for (std::size_t i = 0; i < cracks.size(); ++i) {
     const ObjectReader r(cracks[i], index_path(key_path, i),
-                         {"name", "points", "from", "to", "segment_length", "contact", "tips", "propagation"});
+                         {"name", "points", "from", "to", "segment_length", "contact", "tips", "propagation", "tip_cut"});
     Crack2D c;
     c.id = static_cast<int>(i);
     c.key = index_path(key_path, i);
@@ -210,6 +210,11 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
     c.tips = r.string_or("tips", "auto");
     if (c.tips != "auto" && c.tips != "both" && c.tips != "start" && c.tips != "end" && c.tips != "none")
       throw SceneError(r.at("tips"), "unknown value \"" + c.tips + "\"; valid: auto, both, start, end, none");
+    // Cells by which the crossing test cuts each tip back (ExplicitCrack::update_crossing); the MPM
+    // scene reader converts it to metres once the grid is known.
+    c.tip_cut = r.number_or("tip_cut", kDefaultTipCut);
+    if (!(c.tip_cut >= 0.0 && c.tip_cut <= 1.0))
+      throw SceneError(r.at("tip_cut"), "must lie in [0, 1] cells (got " + r["tip_cut"].dump() + ")");
     c.tip[0] = c.tips == "both" || c.tips == "start" || c.tips == "auto";
     c.tip[1] = c.tips == "both" || c.tips == "end" || c.tips == "auto";
     set_polyline_segments(c);

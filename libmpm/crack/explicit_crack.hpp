@@ -63,6 +63,49 @@ struct ExplicitCrack : Surface<Dim>, FrontsOf<Dim>, ContactSettings {
   std::vector<Vec<Dim>> above, below;
   // Extent (Surface::lo, hi) of all vertices: empty (+inf / -inf) until update_extent(), so that a
   // crack whose extent was never computed screens every pair out; call it after moving the points.
+  void update_extent() {
+    Surface<Dim>::update_extent();
+    if constexpr (Dim == 2) update_crossing();
+  }
+
+  // 2D: the polyline the crossing test uses, `points` with each end in cut_end cut back by tip_cut
+  // (m) along the crack: points cross_first .. cross_last of cross_points, whose two ends lie on the
+  // crack (empty when cross_last <= cross_first). Why: a node is split when a line from a particle
+  // crosses the crack, and the crack's displacement jump then falls linearly to zero at the next
+  // node that is not split, so the discrete crack ends at the first whole node beyond the last split
+  // one: up to a cell beyond its tip, a whole cell when the tip lies on a node (pure mode II at
+  // a = 8 cells: K_II +9.2 %). Cut back by tip_cut, the whole node lies within tip_cut - 1 .. tip_cut
+  // cells of the tip (docs/validation.md, "Where the discrete crack ends"). An end with no material
+  // ahead (a mouth) is not cut. The scene reader sets cut_end and tip_cut; update_extent() updates
+  // the polyline.
+  std::vector<uint8_t> cut_end = std::vector<uint8_t>(2, 0);
+  double tip_cut = 0.0;
+  std::vector<Vec<Dim>> cross_points;
+  int32_t cross_first = 0, cross_last = -1;
+  bool cuts() const { return tip_cut > 0.0 && (cut_end[0] || cut_end[1]); }
+  void update_crossing() {
+    if (!cuts()) return;
+    cross_points = this->points;
+    cross_first = 0, cross_last = static_cast<int32_t>(cross_points.size()) - 1;
+    // Walks from one end (step +1 from the start, -1 from the end), consuming whole segments shorter
+    // than what is left to cut and moving the end point onto the segment where the cut ends.
+    auto cut = [&](int32_t& end, int step) {
+      double left = tip_cut;
+      while (cross_last > cross_first) {
+        Vec<Dim>& x = cross_points[static_cast<std::size_t>(end)];
+        const Vec<Dim>& next = cross_points[static_cast<std::size_t>(end + step)];
+        const double l = (next - x).norm();
+        if (left < l) {
+          x += (next - x) * (left / l);
+          return;
+        }
+        left -= l;
+        end += step;
+      }
+    };
+    if (cut_end[0]) cut(cross_first, 1);
+    if (cut_end[1]) cut(cross_last, -1);
+  }
 };
 
 // 3D Subtask 1: can the particle-node line touch the surface? The closed box spanned by particle and

@@ -113,8 +113,8 @@ bool CrackGrowth::grow(double time, long step, const std::vector<crack::TipRecor
       c.points.insert(c.points.begin(), to), c.above.insert(c.above.begin(), to), c.below.insert(c.below.begin(), to);
     }
     crack::set_polyline_segments(c);
+    if (stop != GrowthStop::None) c.tip[rec.end] = 0, c.cut_end[rec.end] = 0;  // through an edge, or into a crack
     c.update_extent();
-    if (stop != GrowthStop::None) c.tip[rec.end] = 0;
     st.grown += length;
     st.last_time = time;
     st.wait = wait;
@@ -151,14 +151,15 @@ std::vector<double> CrackGrowth::row(const GrowthEvent& e) {
 
 void CrackGrowth::save(StateWriter& w) const {
   w.array(state_);
-  for (const auto& c : m_.cracks) w.array(c.tip);
+  for (const auto& c : m_.cracks) w.array(c.tip), w.array(c.cut_end);
 }
 
 void CrackGrowth::load(StateReader& r) {
   r.array(state_, "crack growth states");
   for (auto& c : m_.cracks) {
-    r.array(c.tip, "crack tips");
+    r.array(c.tip, "crack tips"), r.array(c.cut_end, "crack tips");
     crack::set_polyline_segments(c);
+    c.update_extent();  // (the cut polyline follows cut_end)
   }
   events_.clear();
 }

@@ -100,18 +100,46 @@ void cut_through_near_edges(Model<2>& m) {
 // "tips": "auto" makes an end point a crack tip when there is material ahead of it (a particle
 // within one cell of the point one cell ahead along the crack): the end of a crack cut in from a
 // free edge is no tip.
-void resolve_tips(Model<2>& m) {
+bool material_ahead_of(const Model<2>& m, const crack::Crack2D& c, int end) {
   const double h = m.grid.h;
+  const crack::TipFrame f = crack::tip_frame(c, end);
+  const Vec<2> ahead = f.tip + h * f.e1;
+  for (std::size_t p = 0; p < m.particles.size(); ++p)
+    if ((m.particles.x[p] - ahead).norm() <= h) return true;
+  return false;
+}
+void resolve_tips(Model<2>& m) {
   for (auto& c : m.cracks) {
     if (c.tips != "auto") continue;
-    for (int end = 0; end < 2; ++end) {
-      if (!c.tip[end]) continue;  // carried through a free edge (cut_through_near_edges)
-      const crack::TipFrame f = crack::tip_frame(c, end);
-      const Vec<2> ahead = f.tip + h * f.e1;
-      c.tip[end] = false;
-      for (std::size_t p = 0; p < m.particles.size() && !c.tip[end]; ++p)
-        c.tip[end] = (m.particles.x[p] - ahead).norm() <= h;
+    for (int end = 0; end < 2; ++end)
+      if (c.tip[end]) c.tip[end] = material_ahead_of(m, c, end);  // (0: carried through a free edge)
+  }
+}
+
+// Which ends the crossing test cuts back (ExplicitCrack::update_crossing): the ends with material
+// ahead, whatever "tips" says (it chooses where J and K are computed, not the physics), except an end
+// within a cell of another crack (it joins that crack: cut back, it would leave a bridge) and the
+// ends carried through a free edge. cracks[i].tip_cut was read in cells.
+void resolve_cut_ends(Model<2>& m) {
+  const double h = m.grid.h;
+  auto near_other_crack = [&](const crack::Crack2D& c, const Vec<2>& x) {
+    for (const auto& o : m.cracks) {
+      if (&o == &c) continue;
+      for (std::size_t s = 0; s + 1 < o.points.size(); ++s) {
+        const Vec<2> a = o.points[s], t = o.points[s + 1] - a;
+        const double u = std::clamp((x - a).dot(t) / t.squaredNorm(), 0.0, 1.0);
+        if ((a + u * t - x).norm() <= h) return true;
+      }
     }
+    return false;
+  };
+  for (auto& c : m.cracks) {
+    c.tip_cut *= h;
+    for (int end = 0; end < 2; ++end) {
+      const Vec<2> x = end ? c.points.back() : c.points.front();
+      c.cut_end[end] = c.tip_cut > 0.0 && material_ahead_of(m, c, end) && !near_other_crack(c, x);
+    }
+    c.update_extent();
   }
 }
 
@@ -427,6 +455,7 @@ void read_cracks(const json& scene, double length, Model<Dim>& m) {
     read_propagation(scene, length, m);
     join_cracks_meeting_end_to_end(m);
     warn_meeting_ends(m);
+    resolve_cut_ends(m);
   }
 }
 

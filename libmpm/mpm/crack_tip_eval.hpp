@@ -54,7 +54,14 @@ inline std::vector<crack::Crack2D> cracks_near(const std::vector<crack::Crack2D>
     crack::Crack2D l;
     l.id = c.id;
     l.points.assign(c.points.begin() + static_cast<std::ptrdiff_t>(first), c.points.begin() + static_cast<std::ptrdiff_t>(last + 2));
-    l.update_extent();
+    l.Surface<2>::update_extent();
+    if (c.cuts()) {  // the same part of the crack's cut polyline (the stepper's crossing)
+      l.tip_cut = c.tip_cut, l.cut_end = c.cut_end;
+      l.cross_points.assign(c.cross_points.begin() + static_cast<std::ptrdiff_t>(first),
+                            c.cross_points.begin() + static_cast<std::ptrdiff_t>(last + 2));
+      const auto f = static_cast<int32_t>(first), n = static_cast<int32_t>(l.points.size());
+      l.cross_first = std::max(c.cross_first - f, 0), l.cross_last = std::min(c.cross_last - f, n - 1);
+    }
     out.push_back(std::move(l));
   }
   return out;
