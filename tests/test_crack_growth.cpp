@@ -314,6 +314,13 @@ TEST(CrackGrowthScene, RefusesBadPropagationKeysNamingThem) {
   EXPECT_EQ(e.key_path(), "cracks[0].propagation");
 }
 
+TEST(CrackGrowthScene, ThreeDCracksRefuseATipCutNamingTheKey) {
+  json s = test::penny_block_scene(8);
+  s["cracks"][0]["tip_cut"] = 0.45;
+  const auto e = test::error_of([&] { build_model<3>(s); });
+  EXPECT_EQ(e.key_path(), "cracks[0].tip_cut");
+}
+
 // Peridynamics grows cracks by bond breaking: a crack's propagation key is ignored, with a warning.
 TEST(CrackGrowthScene, PeridynamicsWarnsThatItIgnoresPropagation) {
   json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/kalthoff_pd.json");

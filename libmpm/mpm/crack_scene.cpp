@@ -445,6 +445,10 @@ void read_cracks(const json& scene, double length, Model<Dim>& m) {
       if (scene["cracks"][i].is_object() && scene["cracks"][i].contains("propagation"))
         throw SceneError("cracks[" + std::to_string(i) + "].propagation",
                          "3D cracks do not grow yet (growth is 2D so far); remove the key");
+    for (std::size_t i = 0; i < scene["cracks"].size(); ++i)
+      if (scene["cracks"][i].is_object() && scene["cracks"][i].contains("tip_cut"))
+        throw SceneError("cracks[" + std::to_string(i) + "].tip_cut",
+                         "3D crack fronts are not cut back for the crossing test (2D only so far); remove the key");
     m.cracks = crack::parse_cracks3d(scene["cracks"], "cracks", length, {0.5 * m.grid.h, true});
     build_cracks3d(m);
   } else {
