@@ -74,10 +74,10 @@ struct ExplicitCrack : Surface<Dim>, FrontsOf<Dim>, ContactSettings {
   // crosses the crack, and the crack's displacement jump then falls linearly to zero at the next
   // node that is not split, so the discrete crack ends at the first whole node beyond the last split
   // one: up to a cell beyond its tip, a whole cell when the tip lies on a node (pure mode II at
-  // a = 8 cells: K_II +9.2 %). Cut back by tip_cut, the whole node lies within tip_cut - 1 .. tip_cut
-  // cells of the tip (docs/validation.md, "Where the discrete crack ends"). An end with no material
-  // ahead (a mouth) is not cut. The scene reader sets cut_end and tip_cut; update_extent() updates
-  // the polyline.
+  // a = 8 cells: K_II +9.2 %). Cut back by tip_cut, the first whole node lies between tip_cut cells
+  // behind the tip and 1 - tip_cut beyond it (docs/validation.md, "Where the discrete crack ends").
+  // An end with no material ahead (a mouth) is not cut. The scene reader sets cut_end and tip_cut;
+  // update_extent() updates the polyline.
   std::vector<uint8_t> cut_end = std::vector<uint8_t>(2, 0);
   double tip_cut = 0.0;
   std::vector<Vec<Dim>> cross_points;

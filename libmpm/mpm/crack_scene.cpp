@@ -97,9 +97,8 @@ void cut_through_near_edges(Model<2>& m) {
   }
 }
 
-// "tips": "auto" makes an end point a crack tip when there is material ahead of it (a particle
-// within one cell of the point one cell ahead along the crack): the end of a crack cut in from a
-// free edge is no tip.
+// Is there material ahead of end `end` of crack c: a particle within one cell of the point one cell
+// ahead along the crack?
 bool material_ahead_of(const Model<2>& m, const crack::Crack2D& c, int end) {
   const double h = m.grid.h;
   const crack::TipFrame f = crack::tip_frame(c, end);
@@ -108,6 +107,8 @@ bool material_ahead_of(const Model<2>& m, const crack::Crack2D& c, int end) {
     if ((m.particles.x[p] - ahead).norm() <= h) return true;
   return false;
 }
+// "tips": "auto" makes an end point a crack tip when there is material ahead of it: the end of a
+// crack cut in from a free edge is no tip.
 void resolve_tips(Model<2>& m) {
   for (auto& c : m.cracks) {
     if (c.tips != "auto") continue;
