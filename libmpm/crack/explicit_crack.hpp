@@ -83,6 +83,11 @@ struct ExplicitCrack : Surface<Dim>, FrontsOf<Dim>, ContactSettings {
   std::vector<Vec<Dim>> cross_points;
   int32_t cross_first = 0, cross_last = -1;
   bool cuts() const { return tip_cut > 0.0 && (cut_end[0] || cut_end[1]); }
+  // The polyline the crossing test uses: points crossing_first() .. crossing_last() of
+  // crossing_points() (the cut polyline, or `points` when no end is cut).
+  const Vec<Dim>* crossing_points() const { return cuts() ? cross_points.data() : this->points.data(); }
+  int32_t crossing_first() const { return cuts() ? cross_first : 0; }
+  int32_t crossing_last() const { return cuts() ? cross_last : static_cast<int32_t>(this->points.size()) - 1; }
   void update_crossing() {
     if (!cuts()) return;
     cross_points = this->points;

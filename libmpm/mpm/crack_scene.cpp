@@ -4,6 +4,7 @@
 #include "libmpm/mpm/crack_scene.hpp"
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -25,6 +26,16 @@ namespace {
 
 using nlohmann::json;
 
+// Is x within r of crack c's polyline (of some segment)?
+bool near_polyline(const crack::Crack2D& c, const Vec<2>& x, double r) {
+  for (std::size_t s = 0; s + 1 < c.points.size(); ++s) {
+    const Vec<2> a = c.points[s], d = c.points[s + 1] - a;
+    const double t = std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    if ((x - (a + t * d)).norm() <= r) return true;
+  }
+  return false;
+}
+
 // Checks that need the model: every crack point inside the grid (with room for its nodes), and
 // every crack touching a body (some particle within one cell of a segment).
 void check_cracks(const Model<2>& m) {
@@ -44,11 +55,7 @@ void check_cracks(const Model<2>& m) {
     for (std::size_t p = 0; p < m.particles.size() && !touches; ++p) {
       const Vec<2>& x = m.particles.x[p];
       if ((x.array() < clo.array()).any() || (x.array() > chi.array()).any()) continue;
-      for (std::size_t s = 0; s + 1 < c.points.size() && !touches; ++s) {
-        const Vec<2> a = c.points[s], d = c.points[s + 1] - a;
-        const double t = std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-        touches = (x - (a + t * d)).norm() <= h;
-      }
+      touches = near_polyline(c, x, h);
     }
     if (!touches)
       throw SceneError(path, "crack '" + c.name + "' lies outside every body (no particle within one cell of it)");
@@ -124,14 +131,8 @@ void resolve_tips(Model<2>& m) {
 void resolve_cut_ends(Model<2>& m) {
   const double h = m.grid.h;
   auto near_other_crack = [&](const crack::Crack2D& c, const Vec<2>& x) {
-    for (const auto& o : m.cracks) {
-      if (&o == &c) continue;
-      for (std::size_t s = 0; s + 1 < o.points.size(); ++s) {
-        const Vec<2> a = o.points[s], t = o.points[s + 1] - a;
-        const double u = std::clamp((x - a).dot(t) / t.squaredNorm(), 0.0, 1.0);
-        if ((a + u * t - x).norm() <= h) return true;
-      }
-    }
+    for (const auto& o : m.cracks)
+      if (&o != &c && near_polyline(o, x, h)) return true;
     return false;
   };
   for (auto& c : m.cracks) {
@@ -442,14 +443,14 @@ void read_cracks(const json& scene, double length, Model<Dim>& m) {
                                    std::to_string(crack::kMaxCracks) + " (a velocity field's key numbers them in 12 bits)");
   if constexpr (Dim == 3) {
     // Crack particles at half a cell, as the seed's (its §4: "crack particles ... about half the cell size").
+    // Keys of 2D cracks that 3D cracks do not take yet, each with the reason.
+    const std::pair<const char*, const char*> only_2d[] = {
+        {"propagation", "3D cracks do not grow yet (growth is 2D so far); remove the key"},
+        {"tip_cut", "3D crack fronts are not cut back for the crossing test (2D only so far); remove the key"}};
     for (std::size_t i = 0; i < scene["cracks"].size(); ++i)
-      if (scene["cracks"][i].is_object() && scene["cracks"][i].contains("propagation"))
-        throw SceneError("cracks[" + std::to_string(i) + "].propagation",
-                         "3D cracks do not grow yet (growth is 2D so far); remove the key");
-    for (std::size_t i = 0; i < scene["cracks"].size(); ++i)
-      if (scene["cracks"][i].is_object() && scene["cracks"][i].contains("tip_cut"))
-        throw SceneError("cracks[" + std::to_string(i) + "].tip_cut",
-                         "3D crack fronts are not cut back for the crossing test (2D only so far); remove the key");
+      for (const auto& [key, why] : only_2d)
+        if (scene["cracks"][i].is_object() && scene["cracks"][i].contains(key))
+          throw SceneError("cracks[" + std::to_string(i) + "]." + key, why);
     m.cracks = crack::parse_cracks3d(scene["cracks"], "cracks", length, {0.5 * m.grid.h, true});
     build_cracks3d(m);
   } else {

@@ -393,8 +393,8 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       // by the contour's (theta above): near a mixed-mode tip the material's rotation is the
       // deformation's, which the fields' offset carries in together with its strain, and taking out
       // the rotation alone moved the exact K field's K_II / K_I = 0.5 to 0.486 (from 0.504).
+      const double cs = std::cos(body_theta), sn = std::sin(body_theta);
       const auto unturned = [&](const V& dX) {
-        const double cs = std::cos(body_theta), sn = std::sin(body_theta);
         return V(dX.x() - (cs * dX.x() - sn * dX.y()), dX.y() - (sn * dX.x() + cs * dX.y()));
       };
       // Near-tip openings behind the tip from the contour radius, but at least 3 cells, over the
