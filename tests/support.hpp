@@ -110,8 +110,8 @@ inline json dcb_slab_scene(int dim, double end) {
   s["analysis"] = dim == 2 ? json{{"type", "plane_strain"}, {"thickness", 2}} : json{{"type", "3d"}};
   s["time"]["end"] = end;
   s.erase("output");
-  // 3D fronts are not cut back for the crossing test (docs/scenes.md, tip_cut): the 2D crack uses the
-  // same rule, seed 002's, so that both are the same discrete crack.
+  // 3D fronts are not cut back for the crossing test by default (docs/scenes.md, tip_cut): the 2D crack
+  // uses the same rule, seed 002's, so that both are the same discrete crack.
   if (dim == 2) s["cracks"][0]["tip_cut"] = 0;
   if (dim == 3) {
     s["grid"] = {{"min", {-5, -22, -4}}, {"max", {105, 22, 6}}};

@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -169,6 +171,30 @@ TEST(CrackGrowth, AModeICrackRunsOnItsPlaneBelowTheRayleighSpeedToTheFreeEdge) {
               dev20, dev_all, ev_off.empty() ? 0.0 : (ev_off.back().to.x() - ev_off.front().to.x()) * 1e3);
 }
 
+// Study (out of the suite): the mode I crack of validation 2 moved CLEAVE_OFFSET cells off the node
+// line (default 0.1); prints each growth event's position, kink and K_II / K_I.
+TEST(GrowthOffLineStudy, DISABLED_Run) {
+  const char* o = std::getenv("CLEAVE_OFFSET");
+  const double e = o ? std::atof(o) : 0.1;
+  json off = growing_plate(1.0, 40.0);
+  off["bodies"][0]["shape"]["min"] = {-52, -18 + e};
+  off["bodies"][0]["shape"]["max"] = {52, 18 + e};
+  off["cracks"][0]["from"] = {-53, e};
+  off["cracks"][0]["to"] = {0.5, e};
+  if (const char* c = std::getenv("CLEAVE_TIP_CUT")) off["cracks"][0]["tip_cut"] = std::atof(c);
+  const auto ev = grow(off);
+  double dev20 = 0, dev_all = 0;
+  for (const auto& g : ev) {
+    const double d = (g.to.y() - e * 1e-3) / 1e-3;
+    dev_all = std::max(dev_all, std::abs(d));
+    if (g.to.x() - ev.front().to.x() <= 20e-3) dev20 = std::max(dev20, std::abs(d));
+    std::printf("t %.3f us x %.3f mm y-y0 %+.4f cell angle %+.3f deg KII/KI %+.4f\n", g.time * 1e6, g.to.x() * 1e3, d,
+                g.angle * 180 / M_PI, g.KI != 0 ? g.KII / g.KI : 0.0);
+  }
+  std::printf("offset %.2f cell: largest deviation %.2f cell over the first 20 cells, %.2f over %.1f mm\n", e, dev20,
+              dev_all, ev.empty() ? 0.0 : (ev.back().to.x() - ev.front().to.x()) * 1e3);
+}
+
 // A growing crack that comes within a cell of another joins it just past it and stops there.
 TEST(CrackGrowth, ATipThatReachesAnotherCrackJoinsItAndStops) {
   json s = growing_plate(1.0, 12.0);
@@ -312,13 +338,6 @@ TEST(CrackGrowthScene, RefusesBadPropagationKeysNamingThem) {
   EXPECT_EQ(e.key_path(), "cracks[0].propagation.speed");
   e = refused([](json& s) { s["cracks"][0]["tips"] = "none"; });
   EXPECT_EQ(e.key_path(), "cracks[0].propagation");
-}
-
-TEST(CrackGrowthScene, ThreeDCracksRefuseATipCutNamingTheKey) {
-  json s = test::penny_block_scene(8);
-  s["cracks"][0]["tip_cut"] = 0.45;
-  const auto e = test::error_of([&] { build_model<3>(s); });
-  EXPECT_EQ(e.key_path(), "cracks[0].tip_cut");
 }
 
 // Peridynamics grows cracks by bond breaking: a crack's propagation key is ignored, with a warning.

@@ -9,7 +9,7 @@ largest |K_II|, |K_III| / reference, and the wall time.
 
 Usage: bench/crack_fronts/penny_static.py [--cleave build/bin/cleave] [--out DIR]
           [--cells 8] [--blocks 2,3,4] [--radii 2,4] [--volume-term] [--end-us 150] [--threads N]
-          [--shape-function linear|ugimp]
+          [--shape-function linear|ugimp] [--tip-cut CELLS]
 """
 import argparse, math, pathlib
 
@@ -28,6 +28,7 @@ ap.add_argument("--damping", type=float, default=0.1, help="kinetic damping, 1/u
 ap.add_argument("--ppc", type=int, default=2)
 ap.add_argument("--shape-function", default="linear", help="linear or ugimp")
 ap.add_argument("--threads", default="")
+ap.add_argument("--tip-cut", type=float, help="cracks[0].tip_cut, cells (default: the scene default)")
 args = ap.parse_args()
 
 a, sigma = 8.0, 10.0  # mm, MPa
@@ -47,7 +48,8 @@ def scene(block, radius):
         "bodies": [{"name": "block", "material": "m", "particles_per_cell": args.ppc,
                     "shape": {"type": "box", "min": [0, 0, -W], "max": [W, W, W]}}],
         "cracks": [{"name": "penny", "ellipse": {"center": [0, 0, 0], "normal": [0, 0, 1], "radius": a},
-                    "contact": {"law": "frictionless"}}],
+                    "contact": {"law": "frictionless"},
+                    **({"tip_cut": args.tip_cut} if args.tip_cut is not None else {})}],
         "loads": [{"type": "symmetry", "axis": "x", "position": 0},
                   {"type": "symmetry", "axis": "y", "position": 0},
                   {"type": "traction", "face": "+z", "traction": [0, 0, sigma], "rise_time": 20},
@@ -66,7 +68,8 @@ print(f"a = {args.cells} cells ({h:g} mm), reference K_I = 2 sigma sqrt(a/pi) = 
 print("block | contour | t (us) | K_I/ref min..max (mean) | max |K_II|/ref | max |K_III|/ref | nodes | wall (s)")
 for block in [float(b) for b in args.blocks.split(",")]:
     for radius in [float(r) for r in args.radii.split(",")]:
-        tag = f"c{args.cells}_b{block:g}_r{radius:g}{'_v' if args.volume_term else ''}_{args.shape_function}"
+        tag = (f"c{args.cells}_b{block:g}_r{radius:g}{'_v' if args.volume_term else ''}_{args.shape_function}"
+               f"{'' if args.tip_cut is None else f'_cut{args.tip_cut:g}'}")
         rows, times, wall = run_scene(args.cleave, scene(block, radius), pathlib.Path(args.out) / tag, args.threads)
         for t in times[-3:]:
             good = [r for r in rows if float(r["time_s"]) == t and int(float(r["flag"])) == 0]

@@ -12,6 +12,7 @@
 
 Usage: bench/crack_fronts/seed000_specimens.py CASE [--resolution MM] [--radius MM] [--end US]
           [--damping PER_US] [--threads N] [--cleave build/bin/cleave] [--out DIR] [--no-oop]
+          [--tip-cut CELLS]
 Prints the figures and the wall time of the run.
 """
 import argparse, json, math, pathlib
@@ -32,6 +33,7 @@ ap.add_argument("--no-oop", action="store_true", help="seed 000's plain contour 
 ap.add_argument("--volume-term", action="store_true")
 ap.add_argument("--detection", choices=["volume", "displacement", "none"],
                 help="the crack's contact detection (none: no contact law); default: the scene's")
+ap.add_argument("--tip-cut", type=float, help="cracks[0].tip_cut, cells (default: the scene's)")
 args = ap.parse_args()
 
 files = {"rod": "rod_elliptical_crack.json", "cylinder": "cylinder_surface_crack.json", "bar": "bar_inclined_penny.json"}
@@ -54,11 +56,13 @@ if args.detection == "none":
     s["cracks"][0]["contact"] = {"law": "none"}
 elif args.detection:
     s["cracks"][0]["contact"]["detection"] = args.detection
+if args.tip_cut is not None:
+    s["cracks"][0]["tip_cut"] = args.tip_cut
 end = s["time"]["end"]
 s["output"] = {"interval": end, "tip_interval": end / 20, "precision": "float32", "fields": ["displacement"]}
 
 tag = (f"{args.case}_h{h:g}_r{ct['radius']:g}{'_plain' if args.no_oop else ''}{'_v' if args.volume_term else ''}"
-       f"{'_' + args.detection if args.detection else ''}")
+       f"{'_' + args.detection if args.detection else ''}{'' if args.tip_cut is None else f'_cut{args.tip_cut:g}'}")
 rows, times, wall = run_scene(args.cleave, s, pathlib.Path(args.out) / tag, args.threads)
 last = [r for r in rows if float(r["time_s"]) == times[-1]]
 pos = lambda r: [float(r[k]) * 1e3 for k in ("x_m", "y_m", "z_m")]  # mm

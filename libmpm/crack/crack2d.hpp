@@ -83,15 +83,6 @@ struct FieldKeyBuilder {
   }
 };
 
-// Cells by which a 2D crack's tips are cut back for the crossing test when the scene does not say
-// (cracks[i].tip_cut; ExplicitCrack::update_crossing says why). The discrete crack was measured to
-// end about 0.1 cell short of its first whole node (a centre crack whose tips sit on nodes reads the
-// K of its declared length), so a cut of about 0.4-0.5 cell centres it on the declared tip; 0.5 itself
-// would cut a tip half-way between nodes (the common placement, e.g. dcb_crack.json) exactly onto a
-// node, where the split would turn on round-off. Measured on the mixed-mode plate at 0.4, 0.45, 0.5 and
-// 0.6 (docs/validation.md, "Where the discrete crack ends").
-inline constexpr double kDefaultTipCut = 0.45;
-
 inline uint32_t field_key(const std::vector<Crack2D>& cracks, const Vec<2>& x, const Vec<2>& xn) {
   FieldKeyBuilder b;
   for (const auto& c : cracks) {

@@ -20,11 +20,15 @@ std::vector<ExplicitCrack<3>> parse_cracks3d(const nlohmann::json& cracks, const
     c.key = index_path(key_path, i);
     const ObjectReader r(cracks[i], index_path(key_path, i),
                          {"name", "triangles", "quad", "mesh", "rectangle", "ellipse", "file", "element_size",
-                          "contact", "tips", "propagation"});
+                          "contact", "tips", "propagation", "tip_cut"});
     if (r.has("contact")) read_crack_contact(r, c);
     c.tips = r.string_or("tips", "auto");
     if (c.tips != "auto" && c.tips != "all" && c.tips != "none")
       throw SceneError(r.at("tips"), "unknown value \"" + c.tips + "\"; valid for 3D cracks: auto, all, none");
+    // Cells, as in 2D; the MPM scene reader converts it to metres (build_cracks3d).
+    c.tip_cut = r.number_or("tip_cut", kDefaultFrontCut);
+    if (!(c.tip_cut >= 0.0 && c.tip_cut <= 1.0))
+      throw SceneError(r.at("tip_cut"), "must lie in [0, 1] cells (got " + r["tip_cut"].dump() + ")");
     c.above = c.below = c.points;
   }
   return out;

@@ -182,11 +182,17 @@ inline TriangleHit triangle_crossing(const Vec<3>& particle, const Vec<3>& node,
 // those whose bounding boxes meet the particle-node box). `triangle` (optional) receives one
 // crossed triangle on the returned side (the crack normal of contact is taken from it).
 // particle_side(k): volume_sign of triangle ids[k] and the particle (triangle_list_crossing computes
-// it; a caller with many lines from one particle may keep it).
-template <class Ids, class ParticleSide>
+// it; a caller with many lines from one particle may keep it). drop(t, particle, node, at_node): true
+// when the hit of triangle t does not count (the band along a cut front, front_cut.hpp); an AtNode
+// hit is dropped or kept as one, since the band is decided at the node for every triangle holding it.
+struct KeepEveryHit {
+  bool operator()(std::size_t, const Vec<3>&, const Vec<3>&, bool) const { return false; }
+};
+template <class Ids, class ParticleSide, class Drop = KeepEveryHit>
 Side triangle_list_crossing_with(const Vec<3>* points, const std::array<int32_t, 3>* triangles, const Ids& ids,
                                  std::size_t n, const Vec<3>& particle, const Vec<3>& node,
-                                 ParticleSide&& particle_side, std::size_t* triangle = nullptr) {
+                                 ParticleSide&& particle_side, std::size_t* triangle = nullptr,
+                                 const Drop& drop = Drop{}) {
   int count = 0, net = 0, node_side = 0;
   std::size_t tri_above = 0, tri_below = 0, tri_node = 0;
   for (std::size_t k = 0; k < n; ++k) {
@@ -195,7 +201,7 @@ Side triangle_list_crossing_with(const Vec<3>* points, const std::array<int32_t,
     int side = 0;
     const TriangleHit hit =
         triangle_crossing_given(particle_side(k), particle, node, points[T[0]], points[T[1]], points[T[2]], side);
-    if (hit == TriangleHit::None) continue;
+    if (hit == TriangleHit::None || drop(t, particle, node, hit == TriangleHit::AtNode)) continue;
     if (hit == TriangleHit::AtNode) {  // one crossing at the node, however many triangles hold it
       if (node_side == 0) node_side = side, tri_node = t;
       continue;
@@ -212,14 +218,15 @@ Side triangle_list_crossing_with(const Vec<3>* points, const std::array<int32_t,
   return net > 0 ? Side::Above : Side::Below;
 }
 // The same, each triangle's particle side computed here.
-template <class Ids>
+template <class Ids, class Drop = KeepEveryHit>
 Side triangle_list_crossing(const Vec<3>* points, const std::array<int32_t, 3>* triangles, const Ids& ids,
-                            std::size_t n, const Vec<3>& particle, const Vec<3>& node, std::size_t* triangle = nullptr) {
+                            std::size_t n, const Vec<3>& particle, const Vec<3>& node, std::size_t* triangle = nullptr,
+                            const Drop& drop = Drop{}) {
   auto particle_side = [&](std::size_t k) {
     const auto& T = triangles[static_cast<std::size_t>(ids[k])];
     return volume_sign(points[T[0]], points[T[1]], points[T[2]], particle);
   };
-  return triangle_list_crossing_with(points, triangles, ids, n, particle, node, particle_side, triangle);
+  return triangle_list_crossing_with(points, triangles, ids, n, particle, node, particle_side, triangle, drop);
 }
 
 // Whole-surface crossing (points, triangles: point indices, consistently oriented) WITHOUT extent

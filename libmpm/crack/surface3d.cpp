@@ -112,7 +112,8 @@ std::vector<Surface<3>> parse_surfaces3d(const nlohmann::json& cracks, const std
   for (std::size_t i = 0; i < cracks.size(); ++i) {
     const std::string path = index_path(key_path, i);
     const ObjectReader r(cracks[i], path,
-                         {"name", "triangles", "quad", "mesh", "rectangle", "ellipse", "file", "element_size", "contact", "tips", "propagation"});
+                         {"name", "triangles", "quad", "mesh", "rectangle", "ellipse", "file", "element_size", "contact", "tips", "propagation",
+                          "tip_cut"});
     Surface<3> s;
     s.name = r.string("name");
     if (s.name.empty()) throw SceneError(r.at("name"), "must not be empty");

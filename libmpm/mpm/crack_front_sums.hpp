@@ -313,8 +313,10 @@ class TriangleBins {
         }
         return static_cast<int>(s);
       };
-      const crack::Side side = crack::triangle_list_crossing_with(o.points.data(), o.simplices.data(), c.line_ids.data(),
-                                                                  c.line_ids.size(), x, xn, point_side);
+      const crack::Side side =
+          crack::triangle_list_crossing_with(o.points.data(), o.simplices.data(), c.line_ids.data(), c.line_ids.size(),
+                                             x, xn, point_side, nullptr,
+                                             o.front_cut.dropper(o.points.data(), o.simplices.data()));
       if (side != crack::Side::None && !b.add(o.id, side)) return crack::kFieldKeyOverflow;
     }
     return b.key();

@@ -133,9 +133,9 @@ class Classification : public BodyGroups<Dim, SF> {
     std::size_t t = 0;
     const crack::Side side =
         narrowed ? crack::triangle_list_crossing(c.points.data(), c.simplices.data(), near, static_cast<std::size_t>(m),
-                                                 xp, xn, &t)
+                                                 xp, xn, &t, c.front_cut.dropper(c.points.data(), c.simplices.data()))
                  : crack::triangle_list_crossing(c.points.data(), c.simplices.data(), ids, static_cast<std::size_t>(n),
-                                                 xp, xn, &t);
+                                                 xp, xn, &t, c.front_cut.dropper(c.points.data(), c.simplices.data()));
     return side == crack::Side::None || b.add(crack, side, static_cast<int32_t>(t));
   }
 
@@ -372,7 +372,8 @@ class Classification : public BodyGroups<Dim, SF> {
         };
         std::size_t t = 0;
         const crack::Side side = crack::triangle_list_crossing_with(
-            c.points.data(), c.simplices.data(), At{ids, hit}, static_cast<std::size_t>(m), xp, xn, particle_side, &t);
+            c.points.data(), c.simplices.data(), At{ids, hit}, static_cast<std::size_t>(m), xp, xn, particle_side, &t,
+            c.front_cut.dropper(c.points.data(), c.simplices.data()));
         overflow = side != crack::Side::None && !b.add(sub[e].crack, side, static_cast<int32_t>(t));
       }
       emit(j, overflow ? kOverflow : b.key(seg_of(j)));
