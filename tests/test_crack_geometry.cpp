@@ -562,6 +562,44 @@ TEST(TipCut, TheCrossingPolylineIsTheCrackCutBackAtItsCutEnds) {
   EXPECT_EQ(crack_crossing(gone, v(1.5, 0.5), v(1.5, -0.5)), Side::None);
 }
 
+// ExplicitCrack::node_split (cracks[i].tip_split): a crack a tenth of a cell above the node line y = 0,
+// its end x = 3 cut back by 0.45 to x = 2.55. Line by line, a node is split by the lines that meet
+// the crack short of x = 2.55; node by node, a node past x = 2.55 stays whole and one behind it is
+// split by the whole crack, also for a particle whose line meets it between 2.55 and the tip.
+TEST(TipCut, NodeByNodeANodePastTheCutStaysWholeAndOneBehindItIsSplitByTheWholeCrack) {
+  Crack2D c;
+  c.points = {v(0, 0.1), v(1, 0.1), v(2, 0.1), v(3, 0.1)};
+  c.tip_cut = 0.45;
+  c.cut_end = {0, 1};
+  c.update_extent();
+  // Node (3, 0), past the cut; the line from (1.5, 0.25) meets the crack at x = 2.4.
+  EXPECT_EQ(crack_crossing(c, v(1.5, 0.25), v(3, 0)), Side::Above);
+  // Node (2, 0), behind the cut; the line from (3.4, 0.25) meets the crack at x = 2.56.
+  EXPECT_EQ(crack_crossing(c, v(3.4, 0.25), v(2, 0)), Side::None);
+  c.node_split = true;
+  EXPECT_EQ(crack_crossing(c, v(1.5, 0.25), v(3, 0)), Side::None);
+  EXPECT_EQ(crack_crossing(c, v(3.4, 0.25), v(2, 0)), Side::Above);
+  // Far from the tip the two agree.
+  EXPECT_EQ(crack_crossing(c, v(1.2, 0.25), v(1, 0)), Side::Above);
+  EXPECT_EQ(crack_crossing(c, v(1.2, -0.25), v(1, 0)), Side::None);
+}
+
+TEST(TipCut, TipSplitIsNodeForAGrowingCrackAndLineOtherwiseAndAnUnknownValueIsRefused) {
+  const json line = json::parse(R"([{"name": "c", "points": [[0, 0], [1, 0]]}])");
+  EXPECT_FALSE(parse_cracks(line, "cracks", 1.0)[0].node_split);
+  const json growing = json::parse(R"([{"name": "c", "points": [[0, 0], [1, 0]], "propagation": {}}])");
+  EXPECT_TRUE(parse_cracks(growing, "cracks", 1.0)[0].node_split);
+  const json asked = json::parse(R"([{"name": "c", "points": [[0, 0], [1, 0]], "tip_split": "node"}])");
+  EXPECT_TRUE(parse_cracks(asked, "cracks", 1.0)[0].node_split);
+  const json bad = json::parse(R"([{"name": "c", "points": [[0, 0], [1, 0]], "tip_split": "nodes"}])");
+  try {
+    parse_cracks(bad, "cracks", 1.0);
+    FAIL() << "expected a SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("cracks[0].tip_split"), std::string::npos) << e.what();
+  }
+}
+
 TEST(TipCut, OutOfRangeIsRefusedNamingTheKey) {
   const json cracks = json::parse(R"([{"name": "c", "points": [[0, 0], [1, 0]], "tip_cut": 1.5}])");
   try {

@@ -128,8 +128,7 @@ std::vector<GrowthEvent> grow(const json& s, Model<2>* keep = nullptr) {
 // line: the crack of freund.json), by 50 cells to the plate's far edge, where it is carried through
 // and stops. Deviation from its plane below a tenth of a cell; its speed below the Rayleigh speed,
 // measured over 4 cells of growth (the J contour's diameter: over shorter spans the speed is the
-// cadence of single growth steps, up to 0.5 cell a step). docs/validation.md: the same crack a third
-// of a cell off the node line wanders by up to 0.8 cell (a miss).
+// cadence of single growth steps, up to 0.5 cell a step). Off the node line: below.
 TEST(CrackGrowth, AModeICrackRunsOnItsPlaneBelowTheRayleighSpeedToTheFreeEdge) {
   const auto ev = grow(growing_plate(1.0, 40.0));
   ASSERT_GT(ev.size(), 40u);
@@ -151,24 +150,27 @@ TEST(CrackGrowth, AModeICrackRunsOnItsPlaneBelowTheRayleighSpeedToTheFreeEdge) {
   EXPECT_GT(ev.back().to.x(), 52e-3);  // through the edge at x = 52 mm
   for (std::size_t k = 0; k + 1 < ev.size(); ++k) EXPECT_EQ(ev[k].stop, GrowthStop::None);
 
-  // The same crack 0.3 cell off the node line (plate and crack moved up by 0.3 mm): the MISS of
-  // docs/validation.md, printed, not asserted. K_II / K_I of +-1-3 % from the faces' discrete
-  // fields turn each half-cell step by +-1-4 degrees, and the path wanders.
-  json off = growing_plate(1.0, 40.0);
-  off["bodies"][0]["shape"]["min"] = {-52, -17.7};
-  off["bodies"][0]["shape"]["max"] = {52, 18.3};
-  off["cracks"][0]["from"] = {-53, 0.3};
-  off["cracks"][0]["to"] = {0.5, 0.3};
-  const auto ev_off = grow(off);
-  double dev20 = 0, dev_all = 0;
-  for (const auto& e : ev_off) {
-    const double d = std::abs(e.to.y() - 0.3e-3) / h;
-    dev_all = std::max(dev_all, d);
-    if (e.to.x() - ev_off.front().to.x() <= 20 * h) dev20 = std::max(dev20, d);
+  // The same crack off the node line (plate and crack moved up): a growing crack splits the nodes at
+  // its tips node by node (cracks[i].tip_split, ExplicitCrack::node_split), which keeps it on its line
+  // 0.1 and 0.3 cell off (asserted); 0.2 cell off it still wanders (0.30 cell: docs/validation.md, a
+  // MISS, printed), as it does with the crack on a particle row (0.25 off: 0.72). Line by line it
+  // wandered 0.94 / 1.03 / 0.05 cell at 0.1 / 0.2 / 0.3.
+  for (const double e : {0.1, 0.2, 0.3}) {
+    json off = growing_plate(1.0, 40.0);
+    off["bodies"][0]["shape"]["min"] = {-52, -18 + e};
+    off["bodies"][0]["shape"]["max"] = {52, 18 + e};
+    off["cracks"][0]["from"] = {-53, e};
+    off["cracks"][0]["to"] = {0.5, e};
+    const auto ev_off = grow(off);
+    ASSERT_FALSE(ev_off.empty());
+    double dev20 = 0;
+    for (const auto& g : ev_off)
+      if (g.to.x() - ev_off.front().to.x() <= 20 * h) dev20 = std::max(dev20, std::abs(g.to.y() - e * 1e-3) / h);
+    std::printf("mode I growth %.1f cell off the node line: largest deviation %.2f cell over the first 20 cells%s\n", e,
+                dev20, e == 0.2 ? " (MISS, not asserted)" : "");
+    EXPECT_GT(ev_off.back().to.x() - ev_off.front().to.x(), 20 * h);
+    if (e != 0.2) EXPECT_LT(dev20, 0.1) << e;
   }
-  std::printf("mode I growth 0.3 cell off the node line: largest deviation %.2f cell over the first 20 cells, %.2f over "
-              "%.1f mm (MISS: asserted only on the node line)\n",
-              dev20, dev_all, ev_off.empty() ? 0.0 : (ev_off.back().to.x() - ev_off.front().to.x()) * 1e3);
 }
 
 // Study (out of the suite): the mode I crack of validation 2 moved CLEAVE_OFFSET cells off the node

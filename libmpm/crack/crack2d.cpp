@@ -188,7 +188,8 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
   std::map<std::string, std::size_t> names;
   for (std::size_t i = 0; i < cracks.size(); ++i) {
     const ObjectReader r(cracks[i], index_path(key_path, i),
-                         {"name", "points", "from", "to", "segment_length", "contact", "tips", "propagation", "tip_cut"});
+                         {"name", "points", "from", "to", "segment_length", "contact", "tips", "propagation", "tip_cut",
+                          "tip_split"});
     Crack2D c;
     c.id = static_cast<int>(i);
     c.key = index_path(key_path, i);
@@ -215,6 +216,12 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
     c.tip_cut = r.number_or("tip_cut", kDefaultTipCut);
     if (!(c.tip_cut >= 0.0 && c.tip_cut <= 1.0))
       throw SceneError(r.at("tip_cut"), "must lie in [0, 1] cells (got " + r["tip_cut"].dump() + ")");
+    // How the cut splits the nodes near a tip (ExplicitCrack::node_split): node by node for a growing
+    // crack (its direction reads K_II / K_I), line by line otherwise.
+    const std::string split = r.string_or("tip_split", r.has("propagation") ? "node" : "line");
+    if (split != "node" && split != "line")
+      throw SceneError(r.at("tip_split"), "unknown value \"" + split + "\"; valid: node, line");
+    c.node_split = split == "node";
     c.tip[0] = c.tips == "both" || c.tips == "start" || c.tips == "auto";
     c.tip[1] = c.tips == "both" || c.tips == "end" || c.tips == "auto";
     set_polyline_segments(c);

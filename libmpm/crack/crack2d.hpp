@@ -33,9 +33,11 @@ inline bool extent_overlaps(const Crack2D& c, const Vec<2>& particle, const Vec<
 // vertices decided once; an odd count with mixed sides takes the side of the net count).
 // A crack whose ends are cut back (ExplicitCrack::cuts) is tested on its cut polyline.
 inline Side crack_crossing_unscreened(const Crack2D& c, const Vec<2>& particle, const Vec<2>& node) {
-  const int32_t first = c.crossing_first(), last = c.crossing_last();
-  if (last <= first) return Side::None;
-  return polyline_crossing(c.crossing_points() + first, static_cast<std::size_t>(last - first + 1), particle, node);
+  if (!c.cuts() || (c.node_split && !c.past_cut(node)))
+    return polyline_crossing(c.points.data(), c.points.size(), particle, node);
+  if (c.node_split || c.cut_away) return Side::None;
+  return polyline_crossing(c.cross_points.data() + c.cross_first, static_cast<std::size_t>(c.cross_last - c.cross_first + 1),
+                           particle, node);
 }
 
 // Whole-crack crossing for a particle-node pair: Subtask 1 extent screening, then every segment

@@ -137,6 +137,7 @@ void resolve_cut_ends(Model<2>& m) {
   };
   for (auto& c : m.cracks) {
     c.tip_cut *= h;
+    c.cut_reach = c.tip_cut + 2.5 * h;  // (a particle-node line is at most 1.5 sqrt(2) cells long)
     for (int end = 0; end < 2; ++end) {
       const Vec<2> x = end ? c.points.back() : c.points.front();
       c.cut_end[end] = c.tip_cut > 0.0 && material_ahead_of(m, c, end) && !near_other_crack(c, x);
@@ -449,7 +450,8 @@ void read_cracks(const json& scene, double length, Model<Dim>& m) {
     // Crack particles at half a cell, as the seed's (its §4: "crack particles ... about half the cell size").
     // Keys of 2D cracks that 3D cracks do not take yet, each with the reason.
     const std::pair<const char*, const char*> only_2d[] = {
-        {"propagation", "3D cracks do not grow yet (growth is 2D so far); remove the key"}};
+        {"propagation", "3D cracks do not grow yet (growth is 2D so far); remove the key"},
+        {"tip_split", "3D fronts are cut back only crossing by crossing (tip_cut); remove the key"}};
     for (std::size_t i = 0; i < scene["cracks"].size(); ++i)
       for (const auto& [key, why] : only_2d)
         if (scene["cracks"][i].is_object() && scene["cracks"][i].contains(key))

@@ -55,8 +55,10 @@ inline std::vector<crack::Crack2D> cracks_near(const std::vector<crack::Crack2D>
     l.id = c.id;
     l.points.assign(c.points.begin() + static_cast<std::ptrdiff_t>(first), c.points.begin() + static_cast<std::ptrdiff_t>(last + 2));
     l.Surface<2>::update_extent();
-    if (c.cuts()) {  // the same part of the crack's cut polyline (the stepper's crossing)
-      l.tip_cut = c.tip_cut, l.cut_end = c.cut_end;
+    if (c.cuts()) {  // the crack's cut ends as the stepper's crossing sees them (ExplicitCrack::cut_end)
+      l.tip_cut = c.tip_cut, l.cut_end = c.cut_end, l.cut_reach = c.cut_reach, l.cut_away = c.cut_away;
+      l.node_split = c.node_split;
+      l.cut_at[0] = c.cut_at[0], l.cut_at[1] = c.cut_at[1], l.cut_out[0] = c.cut_out[0], l.cut_out[1] = c.cut_out[1];
       l.cross_points.assign(c.cross_points.begin() + static_cast<std::ptrdiff_t>(first),
                             c.cross_points.begin() + static_cast<std::ptrdiff_t>(last + 2));
       const auto f = static_cast<int32_t>(first), n = static_cast<int32_t>(l.points.size());
