@@ -124,6 +124,13 @@ void read_crack_contact(const ObjectReader& cr, ExplicitCrack<Dim>& c) {
 template void read_crack_contact<2>(const ObjectReader&, ExplicitCrack<2>&);
 template void read_crack_contact<3>(const ObjectReader&, ExplicitCrack<3>&);
 
+double read_tip_cut(const ObjectReader& r, double fallback) {
+  const double cut = r.number_or("tip_cut", fallback);
+  if (!(cut >= 0.0 && cut <= 1.0))
+    throw SceneError(r.at("tip_cut"), "must lie in [0, 1] cells (got " + r["tip_cut"].dump() + ")");
+  return cut;
+}
+
 void read_contact_settings(const ObjectReader& r, ContactSettings& c, bool bodies) {
   const std::string law = r.string("law");
   const ContactLaws& laws = ContactLaws::instance();
@@ -213,9 +220,7 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
       throw SceneError(r.at("tips"), "unknown value \"" + c.tips + "\"; valid: auto, both, start, end, none");
     // Cells by which the crossing test cuts each tip back (ExplicitCrack::update_crossing); the MPM
     // scene reader converts it to metres once the grid is known.
-    c.tip_cut = r.number_or("tip_cut", kDefaultTipCut);
-    if (!(c.tip_cut >= 0.0 && c.tip_cut <= 1.0))
-      throw SceneError(r.at("tip_cut"), "must lie in [0, 1] cells (got " + r["tip_cut"].dump() + ")");
+    c.tip_cut = read_tip_cut(r, kDefaultTipCut);
     // How the cut splits the nodes near a tip (ExplicitCrack::node_split): node by node for a growing
     // crack (its direction reads K_II / K_I), line by line otherwise.
     const std::string split = r.string_or("tip_split", r.has("propagation") ? "node" : "line");

@@ -31,13 +31,11 @@ inline bool extent_overlaps(const Crack2D& c, const Vec<2>& particle, const Vec<
 // Whole-crack crossing for a particle-node pair without screening (polyline_crossing in
 // crossing.hpp documents the rules: appendix sign rules per segment, odd/even count, interior
 // vertices decided once; an odd count with mixed sides takes the side of the net count).
-// A crack whose ends are cut back (ExplicitCrack::cuts) is tested on its cut polyline.
+// A crack whose ends are cut back (ExplicitCrack::cuts) is tested as crossing_polyline says.
 inline Side crack_crossing_unscreened(const Crack2D& c, const Vec<2>& particle, const Vec<2>& node) {
-  if (!c.cuts() || (c.node_split && !c.past_cut(node)))
-    return polyline_crossing(c.points.data(), c.points.size(), particle, node);
-  if (c.node_split || c.cut_away) return Side::None;
-  return polyline_crossing(c.cross_points.data() + c.cross_first, static_cast<std::size_t>(c.cross_last - c.cross_first + 1),
-                           particle, node);
+  int32_t lo = 0, hi = static_cast<int32_t>(c.points.size()) - 2;
+  const Vec<2>* pts = c.crossing_polyline(node, lo, hi);
+  return pts ? polyline_crossing(pts + lo, static_cast<std::size_t>(hi - lo + 2), particle, node) : Side::None;
 }
 
 // Whole-crack crossing for a particle-node pair: Subtask 1 extent screening, then every segment

@@ -26,9 +26,7 @@ std::vector<ExplicitCrack<3>> parse_cracks3d(const nlohmann::json& cracks, const
     if (c.tips != "auto" && c.tips != "all" && c.tips != "none")
       throw SceneError(r.at("tips"), "unknown value \"" + c.tips + "\"; valid for 3D cracks: auto, all, none");
     // Cells, as in 2D; the MPM scene reader converts it to metres (build_cracks3d).
-    c.tip_cut = r.number_or("tip_cut", kDefaultFrontCut);
-    if (!(c.tip_cut >= 0.0 && c.tip_cut <= 1.0))
-      throw SceneError(r.at("tip_cut"), "must lie in [0, 1] cells (got " + r["tip_cut"].dump() + ")");
+    c.tip_cut = read_tip_cut(r, kDefaultFrontCut);
     c.above = c.below = c.points;
   }
   return out;

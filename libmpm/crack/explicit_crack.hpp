@@ -5,6 +5,7 @@
 // surfaces; MPM builds these. Only the 2D crack fields exist so far (crack2d.hpp: the polyline
 // reader and crossing test; libmpm/mpm/crack_fields/).
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -27,8 +28,9 @@ enum class ContactLaw { Stick, Frictionless, Friction, None };
 // whose mass centres come within d_contact cells along the normal are in contact).
 enum class Detection { Volume, Displacement, Position };
 
-// Cells by which a 2D crack's tips are cut back for the crossing test when the scene does not say (cracks[i].tip_cut; ExplicitCrack::update_crossing says why). The discrete crack was measured to
-// end about 0.1 cell short of its first whole node (a centre crack whose tips sit on nodes reads the
+// Cells by which a 2D crack's tips are cut back for the crossing test when the scene does not say
+// (cracks[i].tip_cut; ExplicitCrack::cut_end says why). The discrete crack was measured to end about
+// 0.1 cell short of its first whole node (a centre crack whose tips sit on nodes reads the
 // K of its declared length), so a cut of about 0.4-0.5 cell centres it on the declared tip; 0.5 itself
 // would cut a tip half-way between nodes (the common placement, e.g. dcb_crack.json) exactly onto a
 // node, where the split would turn on round-off. Measured on the mixed-mode plate at 0.4, 0.45, 0.5 and
@@ -119,6 +121,15 @@ struct ExplicitCrack : Surface<Dim>, FrontsOf<Dim>, ContactSettings {
       if (r.dot(cut_out[k]) > 0.0 && r.squaredNorm() < cut_reach * cut_reach) return true;
     }
     return false;
+  }
+  // The polyline a line to `node` is tested on, with its segments narrowed to lo .. hi (the crack's
+  // numbering, which cross_points shares); nullptr when this crack splits the node for no line: past
+  // a cut point node by node, or nothing left of the crack once cut.
+  const Vec<Dim>* crossing_polyline(const Vec<Dim>& node, int32_t& lo, int32_t& hi) const {
+    if (!cuts()) return this->points.data();
+    if (node_split) return past_cut(node) ? nullptr : this->points.data();
+    lo = std::max(lo, cross_first), hi = std::min(hi, cross_last - 1);
+    return lo <= hi ? cross_points.data() : nullptr;
   }
   // Set by update_crossing: each cut end's cut point and the crack's outward direction there, and
   // whether the cuts leave nothing; cross_points: the crack with its cut ends walked back by tip_cut,

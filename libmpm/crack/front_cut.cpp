@@ -3,17 +3,6 @@
 #include <algorithm>
 
 namespace cleave::crack {
-namespace {
-
-double segment_distance(const Vec<3>& x, const Vec<3>& a, const Vec<3>& b) {
-  const Vec<3> ab = b - a;
-  const double l2 = ab.squaredNorm();
-  const double s = l2 > 0.0 ? std::clamp(ab.dot(x - a) / l2, 0.0, 1.0) : 0.0;
-  return (a + s * ab - x).norm();
-}
-
-}  // namespace
-
 FrontCut make_front_cut(const Surface<3>& s, const std::vector<CrackFront>& fronts, double cut, double reach) {
   FrontCut fc;
   if (!(cut > 0.0)) return fc;
@@ -31,8 +20,9 @@ FrontCut make_front_cut(const Surface<3>& s, const std::vector<CrackFront>& fron
     double r = 0.0;
     for (int k = 0; k < 3; ++k) r = std::max(r, (s.points[T[k]] - c).norm());
     // Any point of the triangle lies within r of its centroid.
+    const double within = cut + r + reach;
     for (const auto& e : edges)
-      if (segment_distance(c, s.points[e[0]], s.points[e[1]]) <= cut + r + reach) fc.edges.push_back(e);
+      if (segment_distance2(c, s.points[e[0]], s.points[e[1]]) <= within * within) fc.edges.push_back(e);
     fc.begin.push_back(static_cast<int32_t>(fc.edges.size()));
   }
   return fc;

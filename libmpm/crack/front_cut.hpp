@@ -19,6 +19,14 @@
 
 namespace cleave::crack {
 
+// Squared distance from x to the segment a-b.
+inline double segment_distance2(const Vec<3>& x, const Vec<3>& a, const Vec<3>& b) {
+  const Vec<3> ab = b - a;
+  const double l2 = ab.squaredNorm();
+  const double s = l2 > 0.0 ? std::clamp(ab.dot(x - a) / l2, 0.0, 1.0) : 0.0;
+  return (a + s * ab - x).squaredNorm();
+}
+
 struct FrontCut {
   double cut = 0.0;  // m; 0: nothing is cut
   // Per triangle t, the front edges (point ids) that can lie within `cut` of it, edges[begin[t] ..
@@ -42,13 +50,8 @@ struct FrontCut {
       x = particle + w * (node - particle);
     }
     const double cut2 = cut * cut;
-    for (int32_t k = begin[t]; k < begin[t + 1]; ++k) {
-      const Vec<3>& a = points[edges[k][0]];
-      const Vec<3> ab = points[edges[k][1]] - a;
-      const double l2 = ab.squaredNorm();
-      const double s = l2 > 0.0 ? std::clamp(ab.dot(x - a) / l2, 0.0, 1.0) : 0.0;
-      if ((a + s * ab - x).squaredNorm() < cut2) return true;
-    }
+    for (int32_t k = begin[t]; k < begin[t + 1]; ++k)
+      if (segment_distance2(x, points[edges[k][0]], points[edges[k][1]]) < cut2) return true;
     return false;
   }
   // The drop test triangle_list_crossing_with takes, on surface (points, triangles).

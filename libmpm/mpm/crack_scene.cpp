@@ -4,10 +4,10 @@
 #include "libmpm/mpm/crack_scene.hpp"
 
 #include <algorithm>
-#include <utility>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include "libmpm/core/error.hpp"
 #include "libmpm/core/json_reader.hpp"

@@ -102,15 +102,9 @@ class Classification : public BodyGroups<Dim, SF> {
     } else {
       const crack::ExplicitCrack<Dim>& c = cracks_[crack];
       if (!crack::extent_overlaps(c, xp, xn)) return true;  // Subtask 1
-      // Cut tips (ExplicitCrack::cut_end): node by node, a node past the cut stays whole; line by
-      // line, the segments of the cut polyline in lo .. hi.
-      const Vec<Dim>* pts = c.points.data();
-      if (c.cuts() && c.node_split && c.past_cut(xn)) return true;
-      if (c.cuts() && !c.node_split) {
-        lo = std::max(lo, c.cross_first), hi = std::min(hi, c.cross_last - 1);
-        pts = c.cross_points.data();
-        if (lo > hi) return true;
-      }
+      // Cut tips: the polyline and segments ExplicitCrack::crossing_polyline gives for this node.
+      const Vec<Dim>* pts = c.crossing_polyline(xn, lo, hi);
+      if (!pts) return true;
       std::size_t s = 0;
       const crack::Side side = crack::polyline_crossing(pts + lo, static_cast<std::size_t>(hi - lo + 2), xp, xn, &s);
       return side == crack::Side::None || b.add(crack, side, lo + static_cast<int32_t>(s));
