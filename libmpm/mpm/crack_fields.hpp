@@ -285,7 +285,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   void update_momenta(double dt) {
     for (std::size_t x = 0; x < mass_.size(); ++x)
       if (mass_[x] > 0.0) momentum_[x] += dt * force_[x];
-    contact(dt, true);
+    contact(dt, Base::Call::Forces);
     for (std::size_t b = 0; b < block_node_.size(); ++b) {
       const int64_t n = block_node_[b];
       if (grid_.mass[n] > 0.0) {
@@ -327,6 +327,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   }
 
   using Base::begin_step_contact, Base::contact;  // crack contact (Tasks 2 and 6c; Task 4 in update_momenta)
+  using ContactCall = typename Base::Call;
   using Base::move_cracks;  // Task 7 (the step's in the run's costs: crack_fields.hpp's header says why)
   using Base::take_overflow;
 

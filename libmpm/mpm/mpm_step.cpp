@@ -124,7 +124,7 @@ class MpmStepper final : public Stepper<Dim> {
 
     task1_extrapolate();
     apply_momentum_conditions();  // Task 2
-    crack_contact();
+    crack_contact(ContactCall::Start);
     if (traits_.update_before_forces) {  // Tasks 2-3: USF and USAVG update stresses first
       nodal_velocities();
       stress_pass<true, true, false>(dts);
@@ -138,10 +138,14 @@ class MpmStepper final : public Stepper<Dim> {
                                         : task5_update_particles<false>(dt, traits_.reextrapolate, !late_update);
     if (traits_.reextrapolate) {  // Task 6c
       apply_momentum_conditions();
-      crack_contact();
+      crack_contact(ContactCall::Remapped);
       nodal_velocities();
     }
     if (late_update) stress_pass<true, false, true>(dts);  // Task 6a / 6c
+    if (traits_.reextrapolate && !m_.cracks.empty()) {  // crack faces that touch only now (contact.hpp)
+      crack_contact(ContactCall::Closing);
+      cf_->nodal_velocities();
+    }
     if (cf_) {
       CLEAVE_TIME(CrackMotion);
       cf_->move_cracks(dt);  // Task 7
@@ -252,11 +256,13 @@ class MpmStepper final : public Stepper<Dim> {
       mat->update(P_.stress[p], P_.strain[p], L, dts);
   }
 
-  // Contact at multi-field nodes whenever momenta were (re)computed (Tasks 2 and 6c).
-  void crack_contact() {
+  // Contact at multi-field nodes whenever momenta were (re)computed (Tasks 2 and 6c), and for the
+  // crack motion after the last stress update.
+  using ContactCall = typename CrackFields<Dim, SF>::ContactCall;
+  void crack_contact(ContactCall call) {
     if (cf_) {
       CLEAVE_TIME(Contact);
-      cf_->contact(m_.dt);
+      cf_->contact(m_.dt, call);
     }
   }
 

@@ -28,9 +28,16 @@ class CrackContact : public CrackMotion<Dim, SF> {
   using V = Vec<Dim>;
 
  public:
+  // The four calls of a step (mpm_step.cpp), in order: what each may add and what it applies.
+  enum class Call {
+    Start,     // Task 2, on the momenta mapped from the particles
+    Forces,    // Task 4, after the forces: the exchanges are also added to the forces (back-computed)
+    Remapped,  // Task 6c, on the re-extrapolated momenta the second stress update reads
+    Closing,   // after that stress update, for the crack motion (Task 7): crack pairs that touch only now
+  };
   // Contact at every multi-field node, between each pair of fields whose keys differ in exactly one
-  // crack. With back_compute (Task 4) the momentum changes are also added to the forces as Δp/dt so
-  // that Task 5 moves the particles consistently.
+  // crack. In Task 4 the momentum changes are also added to the forces as Δp/dt so that Task 5 moves
+  // the particles consistently.
   // A pair that touches at one call of a step keeps touching for the rest of the step (Tasks 2, 4
   // and 6c apply the law to it), and Task 4 adds no pair in which a field holds less than
   // kMinForcedShare of the pair's mass. Such a field is material whose support just reaches a node
@@ -42,9 +49,22 @@ class CrackContact : public CrackMotion<Dim, SF> {
   // in every task of the step or in none, the disk at 1 rad/ms keeps its energy to 3e-4 over a radian
   // with every law and detection, and colliding faces still stop within 1 % of a cell (docs/validation.md,
   // cracks under rigid rotation).
+  // A crack pair decided in Task 2 does no work: the particles keep their mapped relative velocity u0
+  // (FLIP), Task 4's exchange cancels the forces' change δ of it, and the two stress halves each
+  // see the faces held together, so the exchanges' work sums to zero at first order. A pair added
+  // later does not. Added in Task 4 while its faces moved apart at the step's start (u0 < 0 along
+  // the normal) and together after the forces (u0 + δ > 0), it makes μ |u0| (u0 + δ) / 2 (μ the
+  // reduced mass), so Task 4 adds only pairs that approached before the forces too. Added in
+  // Task 6c, it holds the faces in the second stress half while the particles never received the
+  // exchange, so Task 6c adds none; the pairs that touch only then are applied after that stress
+  // update (Call::Closing), where they keep the crack's tracked faces from crossing as they move
+  // (Task 7) and strain nothing. A crack kinked on a node gained 1.41 % in 40 us without both rules
+  // and loses 0.50 % with them (docs/validation.md, "Stability at the extremes"). Bodies in contact
+  // keep the rules they had (their pairs press only in Task 4; body_groups.hpp).
   // Every multi-field node on its own (it changes only its own fields' momenta and forces): in
   // parallel from kParallelPoints nodes.
-  void contact(double dt, bool back_compute = false) {
+  void contact(double dt, Call call) {
+    const bool back_compute = call == Call::Forces;
     const int was = costs::enter(costs::Contact);  // the run's costs (crack_fields.hpp says why calls)
     double cell_volume = G_.h * G_.h;
     if constexpr (Dim == 3) cell_volume *= G_.h;
@@ -97,12 +117,20 @@ class CrackContact : public CrackMotion<Dim, SF> {
           const V dv = pa / ma - pb / mb - rigid;
           const double approach = dv.dot(nrm);  // > 0: the faces move towards each other
           uint8_t& touched = touching_[b * kPairSlots + i * kFieldSlots + j];  // earlier in this step
+          if (call == Call::Closing && (two_bodies || touched)) continue;  // (applied already)
           bool touching = touched || !c;
           // A sliver's share: of the pair's mass across a crack (one material), of its volume between two
           // bodies (whose densities may differ 100-fold: by mass, a heavy impactor's pair with a light
           // beam was always a sliver, never added in Task 4, and the beam impact gained 1-12 % energy).
           const double sa = two_bodies ? field_volume(b, xa) : ma, sb = two_bodies ? field_volume(b, xb) : mb;
-          const bool may_add = !touching && !(back_compute && std::min(sa, sb) < kMinForcedShare * (sa + sb));
+          bool may_add = !touching && !(back_compute && std::min(sa, sb) < kMinForcedShare * (sa + sb));
+          if (may_add && !two_bodies) {  // a crack pair added after Task 2 (the rules above)
+            if (call == Call::Remapped) may_add = false;
+            else if (back_compute) {
+              const V before = (pa - dt * force(n, xa)) / ma - (pb - dt * force(n, xb)) / mb - rigid;
+              may_add = before.dot(nrm) > 0.0;
+            }
+          }
           if (!may_add) {
             // (kept from earlier in the step, or not Task 4's to add)
           } else if (c->detection == crack::Detection::Volume) {
