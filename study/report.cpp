@@ -79,9 +79,12 @@ std::string what_text(const QuantitySpec& q) {
 }
 
 // How a run is named in the summary: its settings, or its label when they are long.
+// A run the study named (its "runs" list) by that name: two such runs may set the same keys to the
+// same values on different scenes (extremes.json's MPM and peridynamics "time.cfl=1"); a run of the
+// study's grid by its settings.
 std::string run_name(const RunRecord& r) {
   const std::string s = settings_text(r.plan->varied);
-  return s.empty() || s.size() > 60 ? r.plan->label : s;
+  return r.plan->named || s.empty() || s.size() > 60 ? r.plan->label : s;
 }
 
 std::string duration(double s) {

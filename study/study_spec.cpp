@@ -302,6 +302,7 @@ Study read_study(const fs::path& file) {
         ObjectReader rr(runs[i], k, {"label", "scene", "set", "expect"});
         RunPlan p;
         p.label = safe_label(rr.string("label"));
+        p.named = true;
         if (rr.has("scene")) p.scene = (dir / rr.string("scene")).lexically_normal();
         else if (!base_scene.empty()) p.scene = base_scene;
         else throw SceneError(rr.at("scene"), "missing (and the study names no base scene)");

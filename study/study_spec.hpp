@@ -47,6 +47,7 @@ struct RunPlan {
   std::vector<Setting> settings;    // every override, the study's "set" first
   std::vector<Setting> varied;      // the study's columns: the varied keys' values (and a run's own set)
   std::optional<Expectation> expect;
+  bool named = false;  // the label is the study's own (its "runs" list): the report names the run by it
 };
 
 struct Reference {
