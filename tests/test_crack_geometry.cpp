@@ -582,6 +582,17 @@ TEST(TipCut, NodeByNodeANodePastTheCutStaysWholeAndOneBehindItIsSplitByTheWholeC
   // Far from the tip the two agree.
   EXPECT_EQ(crack_crossing(c, v(1.2, 0.25), v(1, 0)), Side::Above);
   EXPECT_EQ(crack_crossing(c, v(1.2, -0.25), v(1, 0)), Side::None);
+  // With cut_reach (the scene reader's tip_cut + 2.5 cells) a split node's lines are tested on the
+  // crack carried on past its tip (split_points): the particle (3.6, 0.2) ahead of the tip, above
+  // the crack's line, whose line to the split node (2.5, 0) meets that line at x = 3.05, beyond the
+  // tip, is sorted above; its twin below the line stays on the node's side.
+  c.cut_reach = 2.95;
+  c.update_extent();
+  EXPECT_EQ(crack_crossing(c, v(3.6, 0.2), v(2.5, 0)), Side::Above);
+  EXPECT_EQ(crack_crossing(c, v(3.6, 0.0), v(2.5, 0)), Side::None);
+  EXPECT_EQ(crack_crossing(c, v(1.5, 0.25), v(3, 0)), Side::None);  // (3, 0) is still past the cut
+  c.node_split = false;
+  EXPECT_EQ(crack_crossing(c, v(3.6, 0.2), v(2.5, 0)), Side::None);
 }
 
 TEST(TipCut, TipSplitIsNodeForAGrowingCrackAndLineOtherwiseAndAnUnknownValueIsRefused) {

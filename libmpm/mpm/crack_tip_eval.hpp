@@ -61,6 +61,9 @@ inline std::vector<crack::Crack2D> cracks_near(const std::vector<crack::Crack2D>
       l.cut_at[0] = c.cut_at[0], l.cut_at[1] = c.cut_at[1], l.cut_out[0] = c.cut_out[0], l.cut_out[1] = c.cut_out[1];
       l.cross_points.assign(c.cross_points.begin() + static_cast<std::ptrdiff_t>(first),
                             c.cross_points.begin() + static_cast<std::ptrdiff_t>(last + 2));
+      if (!c.split_points.empty())
+        l.split_points.assign(c.split_points.begin() + static_cast<std::ptrdiff_t>(first),
+                              c.split_points.begin() + static_cast<std::ptrdiff_t>(last + 2));
       const auto f = static_cast<int32_t>(first), n = static_cast<int32_t>(l.points.size());
       l.cross_first = std::max(c.cross_first - f, 0), l.cross_last = std::min(c.cross_last - f, n - 1);
     }
