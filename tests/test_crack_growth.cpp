@@ -163,33 +163,34 @@ TEST(CrackGrowth, AModeICrackRunsOnItsPlaneBelowTheRayleighSpeedToTheFreeEdge) {
 
   // The same crack off the node line (plate and crack moved up): a growing crack splits the nodes at
   // its tips node by node (cracks[i].tip_split, ExplicitCrack::node_split) on the crack carried on
-  // past its tip (ExplicitCrack::split_points), and the opening ratio reads both faces at the nodes that
-  // carry both (evaluate_crack_tips), which keep it on its line 0.1, 0.15, 0.2 and 0.3 cell off
-  // (asserted; 0.00 / 0.00 / 0.01 / 0.09 cell). On a particle row (0.25 off) it still wanders (0.43
-  // cell: docs/validation.md, a MISS, printed). Line by line it wandered 0.94 / 0.82 / 1.03 / 0.05 cell
-  // at 0.1 / 0.15 / 0.2 / 0.3.
-  for (const double e : {0.1, 0.15, 0.2, 0.25, 0.3}) {
+  // past its tip (ExplicitCrack::split_points); its points move with the material at the discrete
+  // crack (CrackMotion::on_discrete_crack), and the opening ratio reads both faces at the nodes that
+  // carry both, weighted at the discrete crack (evaluate_crack_tips). That keeps it on its line at 0.1,
+  // 0.15, 0.2, 0.25 (on a particle row), 0.26 and 0.3 cell off (0.00 cell each; before the last two
+  // changes 0.00 / 0.00 / 0.01 / 0.43 / 0.11 / 0.09). Line by line it wandered 0.94 / 0.82 / 1.03 /
+  // - / - / 0.05 cell. Within about 1e-4 cell of a particle row it still wanders (0.2501 off: 0.23,
+  // 0.75 off: 0.22; docs/validation.md, a MISS): 0.25 itself sits on that knife edge.
+  for (const double e : {0.1, 0.15, 0.2, 0.25, 0.26, 0.3}) {
     const auto ev_off = grow(off_line_plate(e));
     ASSERT_FALSE(ev_off.empty());
     double dev20 = 0;
     for (const auto& g : ev_off)
       if (g.to.x() - ev_off.front().to.x() <= 20 * h) dev20 = std::max(dev20, std::abs(g.to.y() - e * 1e-3) / h);
-    std::printf("mode I growth %.2f cell off the node line: largest deviation %.2f cell over the first 20 cells%s\n", e,
-                dev20, e == 0.25 ? " (MISS, not asserted)" : "");
+    std::printf("mode I growth %.2f cell off the node line: largest deviation %.2f cell over the first 20 cells\n", e, dev20);
     EXPECT_GT(ev_off.back().to.x() - ev_off.front().to.x(), 20 * h);
-    if (e != 0.25) {
-      EXPECT_LT(dev20, 0.1) << e;
-    }
+    EXPECT_LT(dev20, 0.1) << e;
   }
 }
 
 // Study (out of the suite): the mode I crack of validation 2 moved CLEAVE_OFFSET cells off the node
-// line (default 0.1); prints each growth event's position, kink and K_II / K_I.
+// line (default 0.1); prints each growth event's position, kink and K_II / K_I. CLEAVE_TIP_CUT sets the
+// crack's tip_cut, CLEAVE_CRACK_JSON is merged into the crack (e.g. '{"contact": {"law": "none"}}').
 TEST(GrowthOffLineStudy, DISABLED_Run) {
   const char* o = std::getenv("CLEAVE_OFFSET");
   const double e = o ? std::atof(o) : 0.1;
   json off = off_line_plate(e);
   if (const char* c = std::getenv("CLEAVE_TIP_CUT")) off["cracks"][0]["tip_cut"] = std::atof(c);
+  if (const char* c = std::getenv("CLEAVE_CRACK_JSON")) off["cracks"][0].merge_patch(json::parse(c));
   const auto ev = grow(off);
   double dev20 = 0, dev_all = 0;
   for (const auto& g : ev) {

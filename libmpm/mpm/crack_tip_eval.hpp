@@ -404,25 +404,58 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       };
       // The two faces' displacements (and reference positions) at crack point x, each face's field
       // probed at x +- off: read at the nodes of x's cell that carry both faces' fields (the nodes the
-      // crack splits there), with the bilinear weights renormalised over them, so that the faces are
-      // sampled by the same nodes, as mirror images about the discrete crack; only where no node of
-      // the cell carries both, each face over the nodes that carry it. (Each face over its own nodes
-      // read a growing crack 0.15 cell above a node line unevenly: the upper face from the split
-      // nodes below it and, at weight 0.15, the whole nodes above, the lower face from the split nodes
-      // alone. A mode I field's tangential displacement varies with the distance from the crack, so
-      // this read K_II / K_I = +0.1 % where the discrete crack has none (1e-5 now), and the crack turned
-      // off its line: 0.08 cell within 20 cells, now 0.00; docs/validation.md, growing cracks 2.)
+      // crack splits there), with bilinear weights renormalised over them, so that the faces are
+      // sampled by the same nodes, as mirror images about the discrete crack (the weights: below);
+      // only where no node of the cell carries both, each face over the nodes that carry it. (Each
+      // face over its own nodes read a growing crack 0.15 cell above a node line unevenly: the upper
+      // face from the split nodes below it and, at weight 0.15, the whole nodes above, the lower face
+      // from the split nodes alone. A mode I field's tangential displacement varies with the distance
+      // from the crack, so this read K_II / K_I = +0.1 % where the discrete crack has none (1e-5 now),
+      // and the crack turned off its line: 0.08 cell within 20 cells, now 0.00; docs/validation.md,
+      // growing cracks 2.)
       auto read_faces = [&](const V& x, const V& off, detail::TipFieldSums& up, detail::TipFieldSums& down) {
         up = detail::TipFieldSums{}, down = detail::TipFieldSums{};
-        double wsum = 0.0;
+        const detail::TipFieldSums* a[4] = {};
+        const detail::TipFieldSums* b[4] = {};
+        int k = 0, both = 0;
         for_cell_nodes(x, [&](int64_t n, double w) {
-          const detail::TipFieldSums* a = sums.find(n, crack::field_key(local, x + off, node_pos(n)));
-          const detail::TipFieldSums* b = sums.find(n, crack::field_key(local, x - off, node_pos(n)));
-          if (w == 0.0 || !a || !b || a == b || !(a->m > 0.0) || !(b->m > 0.0)) return;
-          up.u += w * a->u / a->m, up.X += w * a->X / a->m;
-          down.u += w * b->u / b->m, down.X += w * b->X / b->m;
-          wsum += w;
+          const int e = k++;
+          a[e] = sums.find(n, crack::field_key(local, x + off, node_pos(n)));
+          b[e] = sums.find(n, crack::field_key(local, x - off, node_pos(n)));
+          if (w == 0.0 || !a[e] || !b[e] || a[e] == b[e] || !(a[e]->m > 0.0) || !(b[e]->m > 0.0)) a[e] = b[e] = nullptr;
+          else ++both;
         });
+        if (both == 0) return interpolate(x + off, up) && interpolate(x - off, down);
+        // The weights are those of the discrete crack beside x: half-way between the nearest particles
+        // on either side of the crack's line (the particles' sorting puts it there), where the faces'
+        // fields are mirror images. With x's own weights a crack 0.26 cell above a node line (particle
+        // rows at 0.25 and 0.75, the discrete crack at 0.5) took 0.74 of its tangential opening from
+        // the lower node line, where a mode I crack's is the opposite of the upper one's: K_II / K_I
+        // -0.3 % where the discrete crack has none, and a growing crack turned 0.12 cell off its line
+        // within 20 cells (docs/validation.md, growing cracks 2).
+        const V nrm = off.normalized(), along(nrm.y(), -nrm.x());
+        double gap_above = INFINITY, gap_below = -INFINITY;
+        for (std::size_t p : around) {
+          if (other(p)) continue;
+          const V r = P.x[p] - x;
+          const double d = r.dot(nrm);
+          if (std::abs(r.dot(along)) > 0.5 * h || std::abs(d) > 1.5 * h) continue;
+          if (d > 0.0) gap_above = std::min(gap_above, d);
+          if (d < 0.0) gap_below = std::max(gap_below, d);
+        }
+        const V xd = std::isfinite(gap_above) && std::isfinite(gap_below) ? V(x + 0.5 * (gap_above + gap_below) * nrm) : x;
+        // (bilinear in x's cell, clamped to it: for_cell_nodes' order, a[2 i + j] at node (i, j))
+        const double i0 = std::floor((x.x() - G.origin.x()) * inv_h), j0 = std::floor((x.y() - G.origin.y()) * inv_h);
+        const double rx = std::clamp((xd.x() - G.origin.x()) * inv_h - i0, 0.0, 1.0);
+        const double ry = std::clamp((xd.y() - G.origin.y()) * inv_h - j0, 0.0, 1.0);
+        double wsum = 0.0;
+        for (int e = 0; e < 4; ++e) {
+          if (!a[e]) continue;
+          const double w = (e / 2 ? rx : 1.0 - rx) * (e % 2 ? ry : 1.0 - ry);
+          up.u += w * a[e]->u / a[e]->m, up.X += w * a[e]->X / a[e]->m;
+          down.u += w * b[e]->u / b[e]->m, down.X += w * b[e]->X / b[e]->m;
+          wsum += w;
+        }
         if (!(wsum > 0.0)) return interpolate(x + off, up) && interpolate(x - off, down);
         up.u /= wsum, up.X /= wsum, down.u /= wsum, down.X /= wsum;
         return true;
