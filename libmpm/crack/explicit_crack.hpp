@@ -5,8 +5,8 @@
 // surfaces; MPM builds these. Only the 2D crack fields exist so far (crack2d.hpp: the polyline
 // reader and crossing test; libmpm/mpm/crack_fields/).
 #pragma once
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
