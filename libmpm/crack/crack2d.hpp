@@ -58,6 +58,8 @@ inline constexpr uint32_t kKeyCodeMask = (1u << kKeyCodeBits) - 1;
 inline constexpr int kMaxCracks = static_cast<int>(kKeyCodeMask / 2) - 1;  // codes up to 2 (kMaxCracks - 1) + 2
 // Code c (0 or 1) of a key (0: none).
 inline constexpr uint32_t key_code(uint32_t key, int c) { return (key >> (kKeyCodeBits * c)) & kKeyCodeMask; }
+// The crack a nonzero code names (code = 2 crack + (below ? 1 : 0) + 1: FieldKeyBuilder).
+inline constexpr int code_crack(uint32_t code) { return static_cast<int>((code - 1) / 2); }
 
 // Collects the crossings of one particle-node line into its field key (with the crossed segment of
 // each code): add() returns false when a third crack is crossed (the key is then kFieldKeyOverflow).

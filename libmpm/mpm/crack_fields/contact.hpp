@@ -291,7 +291,7 @@ class CrackContact : public CrackMotion<Dim, SF> {
       for (int c = 0; c < 2; ++c) {
         const uint32_t code = crack::key_code(key, c);
         if (!code) continue;
-        const int k = static_cast<int>((code - 1) / 2), rank = (code - 1) % 2 ? -1 : 1;
+        const int k = crack::code_crack(code), rank = (code - 1) % 2 ? -1 : 1;
         int i = 0;
         while (i < n && cr[i] != k) ++i;
         if (i == n) {

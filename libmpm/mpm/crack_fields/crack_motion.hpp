@@ -191,7 +191,7 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   Spin field_spin(int32_t b, int s) const {
     const uint32_t key = block_key_[b * kExtra + (s < 0 ? 0 : s)];
     const uint32_t code = crack::key_code(key, 0) ? crack::key_code(key, 0) : crack::key_code(key, 1);
-    return code ? spin_[(code - 1) / 2] : no_spin();
+    return code ? spin_[crack::code_crack(code)] : no_spin();
   }
   // The fields' nodal velocities at multi-field nodes, carried from each field's mass centre to the
   // node with its crack's spin: v = p / m + omega x (x_node - centre). A field's momentum over its mass
@@ -282,7 +282,7 @@ class CrackMotion : public FieldSlots<Dim, SF> {
       }
       for (int k = 0; k < 2; ++k) {
         const uint32_t code = crack::key_code(key, k);
-        if (code) on |= static_cast<int>((code - 1) / 2) == ci ? 1 : 2;
+        if (code) on |= crack::code_crack(code) == ci ? 1 : 2;
       }
     }
     return on;

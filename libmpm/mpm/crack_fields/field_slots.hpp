@@ -111,8 +111,7 @@ class FieldSlots : public Classification<Dim, SF> {
         for (int c = 0; c < 2; ++c) {
           const uint32_t code = crack::key_code(key, c);
           if (!code) continue;
-          const int crack = static_cast<int>((code - 1) / 2);
-          normals[2 * (b * kExtra + slot) + c] += seg_normal_[crack][pair_seg_[2 * q + c]];
+          normals[2 * (b * kExtra + slot) + c] += seg_normal_[crack::code_crack(code)][pair_seg_[2 * q + c]];
         }
       });
     }
@@ -153,14 +152,14 @@ class FieldSlots : public Classification<Dim, SF> {
     return -1;
   }
 
-  // Sum of the crack normals stored for `crack` in field x (none for the ordinary field).
-  V normal_sum(int32_t x, int crack) const {
+  // Sum of the crack normals stored for crack ci in field x (none for the ordinary field).
+  V normal_sum(int32_t x, int ci) const {
     if (x < 0) return V::Zero();
     const uint32_t key = block_key_[x];
     V s = V::Zero();
     for (int c = 0; c < 2; ++c) {
       const uint32_t code = crack::key_code(key, c);
-      if (code && static_cast<int>((code - 1) / 2) == crack) s += normal_[2 * x + c];
+      if (code && crack::code_crack(code) == ci) s += normal_[2 * x + c];
     }
     return s;
   }
