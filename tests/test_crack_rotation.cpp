@@ -1,6 +1,6 @@
 // Cracks under rigid rotation (issue 14, items 1-3): a cracked body that spins keeps its energy, its
-// crack closed, and its J and K at zero, whatever the contact detection and law; a loaded DCB that
-// should give the same J spinning as at rest (a miss: out of the suite). Figures and causes: docs/validation.md, "Cracks under rigid
+// crack closed, and its J and K at zero, whatever the contact detection and law; a loaded DCB gives
+// the same J spinning as at rest. Figures and causes: docs/validation.md, "Cracks under rigid
 // rotation (issue 14)".
 #include <gtest/gtest.h>
 
@@ -137,14 +137,13 @@ TEST(CrackRotation, SpinningDiskKeepsItsEnergyAndItsCrackClosedWithEveryContactL
 }
 
 // The issue's second wish: a loaded DCB at rest and the same DCB spinning slowly give the same J. An
-// aluminium DCB (100 x 36 mm, 2 mm cells, plane stress) cracked along its mid-plane to x = 50 mm, its
-// arms opened by +-0.6 MPa shear tractions on their -x faces ramped over 0.5 ms (static J about
-// 9 J/m^2), run to 1 ms: once at rest, once spinning at 0.1 rad/ms about its centre (0.1 rad turned by
-// the end; the tractions keep their global direction, a change of order angle^2 = 1 % in the opening
-// load). The spin's own physics is small here: centrifugal stress rho omega^2 R^2 = 0.07 MPa against
-// 10 MPa of bending, Coriolis forces 2 omega / (the arms' 37 000 rad/s) = 0.5 % of the inertial ones.
-json loaded_dcb(double omega) {
-  const double traction = 6e5;  // Pa
+// aluminium DCB (100 x 36 mm, plane stress) cracked along its mid-plane to x = 50 mm, its arms opened
+// by shear tractions on their -x faces ramped over 0.5 ms, run to 1 ms: once at rest, once spinning
+// at 0.1 rad/ms about its crack tip (0.1 rad turned by the end; the tractions keep their global
+// direction: an axial pair of +-sin(angle) of the load on the arms, whose share of J is of order
+// angle^2 (h/a)^2 / 24, 6e-5). Coriolis forces are 2 omega / (the arms' 37 000 rad/s) = 0.5 % of
+// the inertial ones. Defaults: 0.6 MPa, 2 mm cells, linear shape functions (the tests set theirs).
+json loaded_dcb(double omega, double traction = 6e5, double cell = 2.0, const char* shape = "linear") {
   json b = {{"name", "dcb"}, {"material", "aluminium"},
             {"shape", {{"type", "rectangle"}, {"min", {0, -18}}, {"max", {100, 18}}}}, {"particles_per_cell", 2}};
   if (omega != 0.0) b["angular_velocity"] = omega, b["rotation_center"] = {50, 0};
@@ -155,18 +154,19 @@ json loaded_dcb(double omega) {
   return {{"units", {{"length", "mm"}, {"stress", "Pa"}, {"density", "g/cm3"}, {"velocity", "m/s"},
                      {"time", "ms"}, {"inverse_time", "1/ms"}}},
           {"analysis", {{"type", "plane_stress"}, {"thickness", 1}}},
-          {"resolution", 2},
+          {"resolution", cell},
           {"grid", {{"min", {-10, -30}}, {"max", {110, 30}}}},
-          {"mpm", {{"shape_function", "linear"}, {"stress_update", "USAVG"}}},
+          {"mpm", {{"shape_function", shape}, {"stress_update", "USAVG"}}},
           {"materials", {test::material("aluminium", 70e9, 0.33, 2.7)}},
           {"bodies", {b}},
-          {"cracks", {{{"name", "midplane"}, {"from", {-2, 0}}, {"to", {50, 0}}, {"segment_length", 2},
+          {"cracks", {{{"name", "midplane"}, {"from", {-2, 0}}, {"to", {50, 0}}, {"segment_length", cell},
                        {"contact", {{"law", "frictionless"}, {"detection", "displacement"}}}}}},
           {"loads", {arm(0, 18, 1.0), arm(-18, 0, -1.0)}},
           {"time", {{"end", 1.0}, {"cfl", 0.5}}}};
 }
 
-// J at the inner tip every `every` steps to 1 ms: (time in ms, J1).
+// J at the inner tip every `every` steps to 1 ms: (time in ms, J1). CLEAVE_DCB_OPENING prints each
+// sample with the load-point opening.
 std::vector<std::pair<double, double>> dcb_J_history(const json& scene, int every = 25) {
   Model<2> m = build_model<2>(scene);
   auto st = make_stepper<2>(m);
@@ -176,39 +176,108 @@ std::vector<std::pair<double, double>> dcb_J_history(const json& scene, int ever
   for (long k = 1; k <= steps; ++k) {
     if (st->step()) break;
     if (k % every == 0)
-      for (const auto& t : st->crack_tip_parameters(ts)) out.emplace_back(st->time() * 1e3, t.J1);
+      for (const auto& t : st->crack_tip_parameters(ts)) {
+        out.emplace_back(st->time() * 1e3, t.J1);
+        if (std::getenv("CLEAVE_DCB_OPENING"))
+          std::printf("O %.4f %.4f %.6e\n", st->time() * 1e3, t.J1, test::dcb_load_point_opening(m.particles));
+      }
   }
   return out;
 }
 
-// The issue asks for J within 2 % of the J at rest; checked at every sample once the load is full
-// (0.5 - 1 ms). It MISSES and is left out of the suite (run it with --gtest_also_run_disabled_tests;
-// CLEAVE_DCB_TRACE=1 prints both histories): the largest difference was 33 % with the stress turned
-// (rotate_with_spin) but without spin_transfer, 21.6 % with spin_transfer (each crack on its own spin
-// fit), 19.8 % with the cracks following the scene's spin; 22.3 % since contact no longer acts at the
-// mouth point beyond the edge (the same as without contact: with linear shape functions the spinning
-// J rings by +-4 % from sample to sample; uGIMP: 20.7 -> 8.1 %). Part of it is physical: started
-// spinning at once, the arms swing open under their centrifugal load (docs/validation.md, "Spinning
-// bodies"). About 10 s.
-TEST(CrackRotation, DISABLED_ALoadedDcbSpinningAtATenthOfARadianPerMillisecondHasTheJItHasAtRest) {
-  const auto rest = dcb_J_history(loaded_dcb(0.0)), spin = dcb_J_history(loaded_dcb(0.1));
-  ASSERT_EQ(rest.size(), spin.size());
-  ASSERT_FALSE(rest.empty());
-  double worst = 0.0, worst_t = 0.0, Jmax = 0.0;
-  if (std::getenv("CLEAVE_DCB_TRACE"))  // every sample: t, J at rest, J spinning
-    for (std::size_t i = 0; i < rest.size(); ++i) std::printf("%.4f %.5f %.5f\n", rest[i].first, rest[i].second, spin[i].second);
-  for (std::size_t i = 0; i < rest.size(); ++i) {
-    Jmax = std::max(Jmax, rest[i].second);
-    if (rest[i].first < 0.5) continue;
-    const double d = std::fabs(spin[i].second - rest[i].second) / std::fabs(rest[i].second);
-    if (d > worst) worst = d, worst_t = rest[i].first;
-    EXPECT_LT(d, 0.02) << "t = " << rest[i].first << " ms: J at rest " << rest[i].second << ", spinning "
-                       << spin[i].second << " J/m^2";
+// The largest relative difference of the spinning J from the J at rest (linear between its samples:
+// a spinning body's time step can differ, its particles' speed enters the CFL limit) once the load
+// is full (0.5 - 1 ms), and its time. CLEAVE_DCB_TRACE prints every sample: t, J at rest, spinning.
+struct JDifference {
+  double worst = 0.0, at = 0.0, Jmax = 0.0;
+  std::size_t samples = 0;
+};
+JDifference spinning_against_rest(const std::vector<std::pair<double, double>>& rest,
+                                  const std::vector<std::pair<double, double>>& spin) {
+  JDifference d;
+  if (rest.size() < 2) return d;
+  const auto rest_at = [&](double t) {
+    std::size_t i = 1;
+    while (i + 1 < rest.size() && rest[i].first < t) ++i;
+    const auto& [t0, j0] = rest[i - 1];
+    const auto& [t1, j1] = rest[i];
+    return j0 + (j1 - j0) * (t - t0) / (t1 - t0);
+  };
+  for (const auto& [t, J] : rest) d.Jmax = std::max(d.Jmax, J);
+  for (const auto& [t, J] : spin) {
+    const double Jr = rest_at(t);
+    if (std::getenv("CLEAVE_DCB_TRACE")) std::printf("%.4f %.5f %.5f\n", t, Jr, J);
+    if (t < 0.5 || t > rest.back().first) continue;
+    ++d.samples;
+    const double e = std::fabs(J - Jr) / std::fabs(Jr);
+    if (e > d.worst) d.worst = e, d.at = t;
   }
-  std::printf("loaded DCB, J at 1 ms: at rest %.4f, spinning %.4f J/m^2; largest difference %.3f %% at %.3f ms "
+  return d;
+}
+
+// Asserted: J spinning within the issue's 2 % of J at rest at every sample from 0.5 ms (full load)
+// to 1 ms, with the default (uGIMP) shape functions at 1 mm cells and 6 MPa tractions: 1.33 %.
+// Why this load and these cells (docs/validation.md, "Spinning bodies"):
+// - the spin's own physics: started spinning at once, the arms (cantilevers whose centres lie 9 mm
+//   off the crack's axis) carry the centrifugal load rho omega^2 y and swing open, J up to 7e-3 J/m^2
+//   unloaded. Superposed on a loaded crack it changes K by the root of the ratio of the two J's: at
+//   0.6 MPa (J 14 J/m^2) +-4.6 % of J, measured 5.7 %; at 6 MPa (J 1400 J/m^2) +-0.45 %. The issue's
+//   comparison assumes the spin adds nothing, which holds at the higher load;
+// - the crack turns off its node line about the tip (8 mm behind it by 0.8 mm at 0.1 rad), and the
+//   discrete crack's J depends on where the line lies in its cells: at rest, the crack 0.1 / 0.2 of a
+//   2 mm cell off the node line reads J +0.19 / +0.9 %. The difference converges with the cell:
+//   2.84 % at 2 mm, 1.33 % at 1 mm.
+// Linear shape functions MISS (21 % at 1 mm, 16 % at 2 mm: the spinning J rings from sample to sample
+// while at rest it is smooth): particles crossing cells in a loaded body, the linear functions' known
+// grid-crossing noise (the same DCB translated at 1 m/s: 74 % once its particles cross node lines).
+// About 35 s.
+TEST(CrackRotation, ALoadedDcbSpinningAtATenthOfARadianPerMillisecondHasTheJItHasAtRest) {
+  const auto rest = dcb_J_history(loaded_dcb(0.0, 6e6, 1.0, "ugimp"));
+  const auto spin = dcb_J_history(loaded_dcb(0.1, 6e6, 1.0, "ugimp"));
+  const JDifference d = spinning_against_rest(rest, spin);
+  std::printf("loaded DCB (6 MPa, 1 mm, uGIMP), J at 1 ms: at rest %.2f, spinning %.2f J/m^2; largest difference "
+              "%.3f %% at %.3f ms (J up to %.1f J/m^2)\n",
+              rest.back().second, spin.back().second, 100 * d.worst, d.at, d.Jmax);
+  EXPECT_GT(d.Jmax, 1000.0);  // loaded: about 1400 J/m^2
+  EXPECT_GT(d.samples, 50u);
+  EXPECT_LT(d.worst, 0.02) << "at t = " << d.at << " ms";
+}
+
+// The comparison above for other settings (--gtest_also_run_disabled_tests). Environment:
+// CLEAVE_DCB_TRACTION (Pa, default 6e5), CLEAVE_DCB_CELL (mm, 2), CLEAVE_DCB_SHAPE (linear),
+// CLEAVE_DCB_LAW (frictionless), CLEAVE_DCB_OMEGA (rad/ms, 0.1); CLEAVE_DCB_VX (m/s) translates the
+// second run instead of spinning it; CLEAVE_DCB_TIP (mm) ends the crack there; CLEAVE_DCB_SHIFT (mm)
+// puts the second run's crack that far off its node line.
+TEST(CrackRotation, DISABLED_LoadedDcbStudy) {
+  const auto number = [](const char* name, double fallback) {
+    const char* v = std::getenv(name);
+    return v ? std::atof(v) : fallback;
+  };
+  const double omega = number("CLEAVE_DCB_OMEGA", 0.1);
+  const auto scene = [&](double w) {
+    const char* shape = std::getenv("CLEAVE_DCB_SHAPE");
+    json s = loaded_dcb(w, number("CLEAVE_DCB_TRACTION", 6e5), number("CLEAVE_DCB_CELL", 2.0), shape ? shape : "linear");
+    if (const char* law = std::getenv("CLEAVE_DCB_LAW")) s["cracks"][0]["contact"]["law"] = law;
+    if (const char* tip = std::getenv("CLEAVE_DCB_TIP")) s["cracks"][0]["to"][0] = std::atof(tip);
+    if (w == 0.0) return s;
+    if (const char* vx = std::getenv("CLEAVE_DCB_VX")) {
+      s["bodies"][0].erase("angular_velocity"), s["bodies"][0].erase("rotation_center");
+      s["bodies"][0]["velocity"] = {std::atof(vx), 0.0};
+    }
+    if (const char* d = std::getenv("CLEAVE_DCB_SHIFT")) {
+      const double dy = std::atof(d);
+      s["cracks"][0]["from"][1] = dy, s["cracks"][0]["to"][1] = dy;
+      s["loads"][0]["region"]["min"][1] = dy, s["loads"][1]["region"]["max"][1] = dy;
+    }
+    return s;
+  };
+  const auto rest = dcb_J_history(scene(0.0)), spin = dcb_J_history(scene(omega));
+  ASSERT_FALSE(rest.empty());
+  ASSERT_FALSE(spin.empty());
+  const JDifference d = spinning_against_rest(rest, spin);
+  std::printf("loaded DCB, J at 1 ms: at rest %.4f, second run %.4f J/m^2; largest difference %.3f %% at %.3f ms "
               "(J up to %.3f J/m^2)\n",
-              rest.back().second, spin.back().second, 100 * worst, worst_t, Jmax);
-  EXPECT_GT(rest.back().second, 1.0);  // loaded: J of the order of the static 9 J/m^2
+              rest.back().second, spin.back().second, 100 * d.worst, d.at, d.Jmax);
 }
 
 // The DCB's crack is drawn from x = -2 mm, a cell beyond the loaded edge: its first point lies
