@@ -160,18 +160,21 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
   const double contour_extent = ts.radius * h * (ts.contour == crack::TipSettings::Contour::Circle ? 1.0 : std::sqrt(2.0));
   const double reach = contour_extent + 4.5 * h;
 
-  // f(node, bilinear weight) for the four nodes of x's cell; false (no call) when the cell is not
-  // inside the grid.
-  const auto for_cell_nodes = [&](const V& x, auto&& f) {
+  // f(node, bilinear weight) for the four nodes of x's cell, in the order (0, 0), (0, 1), (1, 0),
+  // (1, 1), the weights taken at `at` clamped to that cell; false (no call) when the cell is not
+  // inside the grid. for_cell_nodes: the weights at x itself.
+  const auto for_cell_nodes_at = [&](const V& x, const V& at, auto&& f) {
     const double fx = (x.x() - G.origin.x()) * inv_h, fy = (x.y() - G.origin.y()) * inv_h;
     const int i = static_cast<int>(std::floor(fx)), j = static_cast<int>(std::floor(fy));
     if (i < 0 || j < 0 || i + 1 >= G.nodes[0] || j + 1 >= G.nodes[1]) return false;
-    const double rx = fx - i, ry = fy - j;
+    const double rx = std::clamp((at.x() - G.origin.x()) * inv_h - i, 0.0, 1.0);
+    const double ry = std::clamp((at.y() - G.origin.y()) * inv_h - j, 0.0, 1.0);
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b)
         f(static_cast<int64_t>(i + a) * stride[0] + (j + b), (a ? rx : 1.0 - rx) * (b ? ry : 1.0 - ry));
     return true;
   };
+  const auto for_cell_nodes = [&](const V& x, auto&& f) { return for_cell_nodes_at(x, x, f); };
   // Small-strain displacement gradient of particle p relative to the rigid rotation theta of the
   // contour's material (below): its strain plus its integrated rotation less theta.
   double theta = 0.0;
@@ -444,18 +447,15 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
           if (d < 0.0) gap_below = std::max(gap_below, d);
         }
         const V xd = std::isfinite(gap_above) && std::isfinite(gap_below) ? V(x + 0.5 * (gap_above + gap_below) * nrm) : x;
-        // (bilinear in x's cell, clamped to it: for_cell_nodes' order, a[2 i + j] at node (i, j))
-        const double i0 = std::floor((x.x() - G.origin.x()) * inv_h), j0 = std::floor((x.y() - G.origin.y()) * inv_h);
-        const double rx = std::clamp((xd.x() - G.origin.x()) * inv_h - i0, 0.0, 1.0);
-        const double ry = std::clamp((xd.y() - G.origin.y()) * inv_h - j0, 0.0, 1.0);
         double wsum = 0.0;
-        for (int e = 0; e < 4; ++e) {
-          if (!a[e]) continue;
-          const double w = (e / 2 ? rx : 1.0 - rx) * (e % 2 ? ry : 1.0 - ry);
+        k = 0;
+        for_cell_nodes_at(x, xd, [&](int64_t, double w) {
+          const int e = k++;
+          if (!a[e]) return;
           up.u += w * a[e]->u / a[e]->m, up.X += w * a[e]->X / a[e]->m;
           down.u += w * b[e]->u / b[e]->m, down.X += w * b[e]->X / b[e]->m;
           wsum += w;
-        }
+        });
         if (!(wsum > 0.0)) return interpolate(x + off, up) && interpolate(x - off, down);
         up.u /= wsum, up.X /= wsum, down.u /= wsum, down.X /= wsum;
         return true;

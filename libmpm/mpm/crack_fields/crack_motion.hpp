@@ -54,7 +54,7 @@ class CrackMotion : public FieldSlots<Dim, SF> {
       std::vector<V> va(np), vb(np);
       const std::vector<SideFields>& sides = side_fields(ci);
       std::vector<V>& vm = vm_[ci];
-      const Spin spin = spin_[ci] = crack_spin(c, vm);
+      const Spin spin = spin_[ci] = crack_spin(c, read_points(ci), vm);
 #pragma omp parallel for schedule(static) if (parallel_points(np))
       for (std::size_t i = 0; i < np; ++i) {
         const V vcm = vm[i];
@@ -123,17 +123,18 @@ class CrackMotion : public FieldSlots<Dim, SF> {
 
   // The crack's spin: the rigid rotation rate of its points moving with the centre-of-mass
   // velocities, fitted by least squares with each point weighted by the mass about it (zero for a crack
-  // that only translates or opens symmetrically). vm receives the points' centre-of-mass velocities.
+  // that only translates or opens symmetrically), each point's velocity read at `at` (read_points).
+  // vm receives the points' centre-of-mass velocities.
   // Points outside the material (the band of a cell a crack keeps beyond a body's face) weigh little
   // or nothing: unweighted, with each node's p / m interpolated, one such point of the uGIMP rod (beyond
   // its corner at the two symmetry planes) read 1.9e7 m/s, the spin 2.2e7 rad/s, and the nodal
   // velocities carried with it moved particles 20 mm in a step (docs/validation.md, 3D cracks item 8).
-  Spin crack_spin(const crack::ExplicitCrack<Dim>& c, std::vector<V>& vm) const {
+  Spin crack_spin(const crack::ExplicitCrack<Dim>& c, const std::vector<V>& at, std::vector<V>& vm) const {
     const std::size_t np = c.points.size();
     vm.resize(np);
     std::vector<double> mass(np);
 #pragma omp parallel for schedule(static) if (parallel_points(np))
-    for (std::size_t i = 0; i < np; ++i) vm[i] = cm_velocity(on_discrete_crack(c, i), mass[i]);
+    for (std::size_t i = 0; i < np; ++i) vm[i] = cm_velocity(at[i], mass[i]);
     if (scene_spin_) return *scene_spin_;
     V xm = V::Zero(), vbar = V::Zero();
     double msum = 0.0;
@@ -184,7 +185,7 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   void update_spins() {
     spin_.resize(cracks_.size());
     vm_.resize(cracks_.size());
-    for (std::size_t ci = 0; ci < cracks_.size(); ++ci) spin_[ci] = crack_spin(cracks_[ci], vm_[ci]);
+    for (std::size_t ci = 0; ci < cracks_.size(); ++ci) spin_[ci] = crack_spin(cracks_[ci], read_points(ci), vm_[ci]);
   }
   // The spin a field of block b follows (slot s, or -1 for the ordinary field): that of the crack its
   // key names (the ordinary field: the crack of the block's first extra field).
@@ -267,6 +268,17 @@ class CrackMotion : public FieldSlots<Dim, SF> {
         at += x_side[0] + x_side[2];
       }
       return x + ((at / split - x).dot(n)) * n;
+    }
+  }
+  // Where the points of crack ci read their velocity (on_discrete_crack). A function of the crack's
+  // geometry and the fields' keys, as the side fields are: found with them, once per step and after
+  // a crack moved (a step reads them up to five times: four contact calls and the crack motion).
+  const std::vector<V>& read_points(std::size_t ci) {
+    if constexpr (Dim == 3) {
+      return cracks_[ci].points;
+    } else {
+      side_fields(ci);
+      return read_at_[ci];
     }
   }
   // Which cracks' fields node n carries: 1 crack ci's, 2 another's (or a key that overflowed).
@@ -378,9 +390,14 @@ class CrackMotion : public FieldSlots<Dim, SF> {
     auto& out = side_fields_[ci];
     out.assign(2 * c.points.size(), SideFields{});
     const std::size_t np = c.points.size();
+    if constexpr (Dim == 2) {
+      read_at_.resize(cracks_.size());
+      read_at_[ci].resize(np);
+    }
     // (dynamic: a point's cost varies tenfold, with the triangles about it and whether its keys are kept)
 #pragma omp parallel for schedule(dynamic, 16) if (parallel_points(np))
     for (std::size_t i = 0; i < np; ++i) {
+      if constexpr (Dim == 2) read_at_[ci][i] = on_discrete_crack(c, i);
       if (is_tip(c, i)) continue;  // a tip's surfaces follow the point itself
       for (int side = 0; side < 2; ++side) {
         SideKeys local;
@@ -437,7 +454,8 @@ class CrackMotion : public FieldSlots<Dim, SF> {
   std::vector<std::vector<uint8_t>> tip_point_;       // 3D, per crack and point: on a front that is a tip
   std::vector<std::vector<V>> point_normal_;          // 3D, per crack and point: normal (find_side_fields)
   std::vector<std::vector<V>> vm_;                    // per crack: its points' centre-of-mass velocities
-  std::vector<uint8_t> side_valid_;                   // per crack: side_fields_ are up to date
+  std::vector<uint8_t> side_valid_;                   // per crack: side_fields_ (and read_at_) are up to date
+  std::vector<std::vector<V>> read_at_;               // 2D, per crack and point: read_points()
   std::vector<std::vector<SideKeys>> side_keys_;      // 3D, per crack, two per point (find_side_fields)
   std::vector<uint64_t> side_key_epoch_;              // 3D, per crack: the crack_epoch_ of side_keys_
 };
