@@ -468,6 +468,20 @@ TEST(CrackTipDcb, ACrackEndingHalfACellShortOfTheLoadedEdgeCutsThroughLikeOneGiv
   EXPECT_LT(joined.first, 0.1 * through.first);
 }
 
+// The comma-separated numbers of environment variable `name` (of `fallback` where it is not set): the
+// studies' lists of settings.
+std::vector<double> numbers_from_env(const char* name, const std::string& fallback) {
+  const char* v = std::getenv(name);
+  const std::string list = v ? v : fallback;
+  std::vector<double> out;
+  for (std::size_t at = 0; at < list.size();) {
+    const std::size_t comma = std::min(list.find(',', at), list.size());
+    out.push_back(std::atof(list.substr(at, comma - at).c_str()));
+    at = comma + 1;
+  }
+  return out;
+}
+
 // The DCB of dcb_crack.json turned by deg degrees about the origin (the body as a polygon, the crack
 // turned with it), each arm end loaded by its 0.4 mN turned with the body (the total force spread over
 // the free -x faces of the particles of a box round the arm's end face), damped to static; J and K
@@ -507,26 +521,30 @@ crack::TipRecord turned_dcb(double deg, double cell = 2) {
 // Issue 14: the DCB turned by 30 degrees off the grid's axes, at the default settings, against the
 // same DCB on the axes: K_II / K_I below 1 % (the loading is symmetric about the crack, K_II = 0),
 // and the same J within 2 % (the issue's criterion for a spinning DCB, here for a turned one).
-// MISSED, so out of the suite (docs/validation.md, "The defaults"): J -0.08 %, but K_II / K_I -3.7 %
-// at 2 mm and +3.8 % at 1 mm cells (J2 / J1 +5.1 and -9.2 %: the contour's J2 finds the same K_II);
-// loading boxes of 1-17, 5-13 or 9-17 mm along the end face change it by 0.3 points, and carrying each
-// field's displacement from its mass centre to the node (a trial) by 0.5. Where the turned crack's
-// tip leaves its nodes cut differs for the two arms (validation 4's mechanism).
-TEST(CrackTipDcb, DISABLED_TurnedThirtyDegreesOffTheGridKeepsItsJAndHasNoKII) {
-  const crack::TipRecord on = turned_dcb(0), off = turned_dcb(30);
-  std::printf("DCB on the grid's axes: J %.6g J/m^2, KI %.5g, KII %.4g (KII/KI %+.3f %%); turned 30 degrees: J %.6g "
-              "(%+.2f %%), KI %.5g, KII %.4g (KII/KI %+.3f %%)\n",
-              on.J1, on.KI, on.KII, 100 * on.KII / on.KI, off.J1, 100 * (off.J1 / on.J1 - 1), off.KI, off.KII,
-              100 * off.KII / off.KI);
-  std::printf("J2: on the axes %.4g, turned %.4g J/m^2 (J2 / J1 %+.3f %%)\n", on.J2, off.J2, 100 * off.J2 / off.J1);
-  if (std::getenv("CLEAVE_TURNED_DCB_FINE")) {  // the same at 1 mm cells (about a minute)
-    const crack::TipRecord on1 = turned_dcb(0, 1), off1 = turned_dcb(30, 1);
-    std::printf("1 mm cells: on the axes J %.6g, KII/KI %+.3f %%; turned J %.6g (%+.2f %%), KII/KI %+.3f %%, J2/J1 %+.3f %%\n",
-                on1.J1, 100 * on1.KII / on1.KI, off1.J1, 100 * (off1.J1 / on1.J1 - 1), 100 * off1.KII / off1.KI,
-                100 * off1.J2 / off1.J1);
-  }
+// Met at 0.5 mm cells (36 across an arm): K_II / K_I +0.88 %, J -0.25 % (session 28). Missed at the
+// scene's 2 mm and at 1 mm (DISABLED_TurnedThirtyDegreesAtOtherCells): K_II / K_I -2.85 % and
+// +1.49 %, J -1.05 % and -2.18 %; the contour's J2 finds the same K_II (J2 / J1 +2.87 %, -5.10 %,
+// -0.77 %): the discrete solution has it, from where the turned crack's tip leaves its nodes cut on
+// either arm (validation 4's mechanism), of either sign by cell size and shrinking with it. Loading
+// boxes of 1-17, 5-13 or 9-17 mm along the end face changed it by 0.3 points at 2 mm. About 100 s.
+TEST(CrackTipDcb, TurnedThirtyDegreesOffTheGridKeepsItsJAndHasNoKIIAtHalfMillimetreCells) {
+  const crack::TipRecord on = turned_dcb(0, 0.5), off = turned_dcb(30, 0.5);
+  std::printf("DCB at 0.5 mm cells on the grid's axes: J %.6g J/m^2, KII/KI %+.3f %%; turned 30 degrees: J %.6g "
+              "(%+.2f %%), KII/KI %+.3f %%, J2/J1 %+.3f %%\n",
+              on.J1, 100 * on.KII / on.KI, off.J1, 100 * (off.J1 / on.J1 - 1), 100 * off.KII / off.KI,
+              100 * off.J2 / off.J1);
   EXPECT_LT(std::fabs(off.KII / off.KI), 0.01);
   EXPECT_NEAR(off.J1 / on.J1, 1.0, 0.02);
+}
+
+// The same at other cells (mm, CLEAVE_TURNED_DCB_CELLS, comma-separated; default 2,1; prints only).
+TEST(CrackTipDcb, DISABLED_TurnedThirtyDegreesAtOtherCells) {
+  for (double h : numbers_from_env("CLEAVE_TURNED_DCB_CELLS", "2,1")) {
+    const crack::TipRecord on = turned_dcb(0, h), off = turned_dcb(30, h);
+    std::printf("%g mm cells: on the axes J %.6g, KII/KI %+.3f %%; turned J %.6g (%+.2f %%), KII/KI %+.3f %%, J2/J1 %+.3f %%\n",
+                h, on.J1, 100 * on.KII / on.KI, off.J1, 100 * (off.J1 / on.J1 - 1), 100 * off.KII / off.KI,
+                100 * off.J2 / off.J1);
+  }
 }
 
 // Validation 2. The scene's 2 mm cells put 9 cells across an arm: at the default 2-cell contour J
@@ -734,16 +752,7 @@ TEST(CrackTipFreund, DynamicKIFollowsTheClosedFormBeforeReflections) {
 // (4 cells, H = 18: -3.46 % at 1.25 transits, +1.97 % at 1.65, -2.55 % at 2.65), and so does the
 // received load's reference: the smeared step front rings behind it.
 TEST(CrackTipFreundStudy, DISABLED_Run) {
-  std::vector<double> radii;
-  {
-    const char* v = std::getenv("CLEAVE_FREUND_RADII");
-    std::string list = v ? v : "4,5,6";
-    for (std::size_t at = 0; at < list.size();) {
-      const std::size_t comma = std::min(list.find(',', at), list.size());
-      radii.push_back(std::atof(list.substr(at, comma - at).c_str()));
-      at = comma + 1;
-    }
-  }
+  const std::vector<double> radii = numbers_from_env("CLEAVE_FREUND_RADII", "4,5,6");
   const char* H = std::getenv("CLEAVE_FREUND_H");
   const char* W = std::getenv("CLEAVE_FREUND_W");
   const FreundRun r = run_freund(H ? std::atof(H) : 30, W ? std::atof(W) : 90, radii, true);
