@@ -3,10 +3,13 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <map>
+#include <string>
 #include <vector>
 #include <nlohmann/json.hpp>
 
@@ -21,6 +24,24 @@ using nlohmann::json;
 
 inline json material(const std::string& name, double E, double nu, double rho) {
   return {{"name", name}, {"type", "linear_elastic"}, {"E", E}, {"nu", nu}, {"density", rho}};
+}
+
+// The studies' settings (tests out of the suite): the number in environment variable `name`, or
+// `fallback` where it is not set; env_numbers: its comma-separated numbers.
+inline double env_number(const char* name, double fallback) {
+  const char* v = std::getenv(name);
+  return v ? std::atof(v) : fallback;
+}
+inline std::vector<double> env_numbers(const char* name, const std::string& fallback) {
+  const char* v = std::getenv(name);
+  const std::string list = v ? v : fallback;
+  std::vector<double> out;
+  for (std::size_t at = 0; at < list.size();) {
+    const std::size_t comma = std::min(list.find(',', at), list.size());
+    out.push_back(std::atof(list.substr(at, comma - at).c_str()));
+    at = comma + 1;
+  }
+  return out;
 }
 
 // Steps a model n times; fails the calling test if a step reports a problem.

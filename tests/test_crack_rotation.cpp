@@ -250,10 +250,7 @@ TEST(CrackRotation, ALoadedDcbSpinningAtATenthOfARadianPerMillisecondHasTheJItHa
 // second run instead of spinning it; CLEAVE_DCB_TIP (mm) ends the crack there; CLEAVE_DCB_SHIFT (mm)
 // puts the second run's crack that far off its node line.
 TEST(CrackRotation, DISABLED_LoadedDcbStudy) {
-  const auto number = [](const char* name, double fallback) {
-    const char* v = std::getenv(name);
-    return v ? std::atof(v) : fallback;
-  };
+  const auto number = test::env_number;
   const double omega = number("CLEAVE_DCB_OMEGA", 0.1);
   const auto scene = [&](double w) {
     const char* shape = std::getenv("CLEAVE_DCB_SHAPE");
@@ -337,7 +334,7 @@ TEST(CrackRotation, ASpinningDcbLoadedInModeOneHasNoKII) {
 // Environment: CLEAVE_SPIN_ANGLE (radians, default 1), CLEAVE_SPIN_OMEGA (rad/ms; default both).
 // Run with --gtest_also_run_disabled_tests --gtest_filter='CrackRotation.DISABLED_Study'.
 TEST(CrackRotation, DISABLED_Study) {
-  const double angle = std::getenv("CLEAVE_SPIN_ANGLE") ? std::atof(std::getenv("CLEAVE_SPIN_ANGLE")) : 1.0;
+  const double angle = test::env_number("CLEAVE_SPIN_ANGLE", 1.0);
   std::vector<double> omegas = {1.0, 0.1};
   if (std::getenv("CLEAVE_SPIN_OMEGA")) omegas = {std::atof(std::getenv("CLEAVE_SPIN_OMEGA"))};
   for (double w : omegas)

@@ -468,20 +468,6 @@ TEST(CrackTipDcb, ACrackEndingHalfACellShortOfTheLoadedEdgeCutsThroughLikeOneGiv
   EXPECT_LT(joined.first, 0.1 * through.first);
 }
 
-// The comma-separated numbers of environment variable `name` (of `fallback` where it is not set): the
-// studies' lists of settings.
-std::vector<double> numbers_from_env(const char* name, const std::string& fallback) {
-  const char* v = std::getenv(name);
-  const std::string list = v ? v : fallback;
-  std::vector<double> out;
-  for (std::size_t at = 0; at < list.size();) {
-    const std::size_t comma = std::min(list.find(',', at), list.size());
-    out.push_back(std::atof(list.substr(at, comma - at).c_str()));
-    at = comma + 1;
-  }
-  return out;
-}
-
 // The DCB of dcb_crack.json turned by deg degrees about the origin (the body as a polygon, the crack
 // turned with it), each arm end loaded by its 0.4 mN turned with the body (the total force spread over
 // the free -x faces of the particles of a box round the arm's end face), damped to static; J and K
@@ -539,7 +525,7 @@ TEST(CrackTipDcb, TurnedThirtyDegreesOffTheGridKeepsItsJAndHasNoKIIAtHalfMillime
 
 // The same at other cells (mm, CLEAVE_TURNED_DCB_CELLS, comma-separated; default 2,1; prints only).
 TEST(CrackTipDcb, DISABLED_TurnedThirtyDegreesAtOtherCells) {
-  for (double h : numbers_from_env("CLEAVE_TURNED_DCB_CELLS", "2,1")) {
+  for (double h : test::env_numbers("CLEAVE_TURNED_DCB_CELLS", "2,1")) {
     const crack::TipRecord on = turned_dcb(0, h), off = turned_dcb(30, h);
     std::printf("%g mm cells: on the axes J %.6g, KII/KI %+.3f %%; turned J %.6g (%+.2f %%), KII/KI %+.3f %%, J2/J1 %+.3f %%\n",
                 h, on.J1, 100 * on.KII / on.KI, off.J1, 100 * (off.J1 / on.J1 - 1), 100 * off.KII / off.KI,
@@ -752,10 +738,9 @@ TEST(CrackTipFreund, DynamicKIFollowsTheClosedFormBeforeReflections) {
 // (4 cells, H = 18: -3.46 % at 1.25 transits, +1.97 % at 1.65, -2.55 % at 2.65), and so does the
 // received load's reference: the smeared step front rings behind it.
 TEST(CrackTipFreundStudy, DISABLED_Run) {
-  const std::vector<double> radii = numbers_from_env("CLEAVE_FREUND_RADII", "4,5,6");
-  const char* H = std::getenv("CLEAVE_FREUND_H");
-  const char* W = std::getenv("CLEAVE_FREUND_W");
-  const FreundRun r = run_freund(H ? std::atof(H) : 30, W ? std::atof(W) : 90, radii, true);
+  const std::vector<double> radii = test::env_numbers("CLEAVE_FREUND_RADII", "4,5,6");
+  const FreundRun r =
+      run_freund(test::env_number("CLEAVE_FREUND_H", 30), test::env_number("CLEAVE_FREUND_W", 90), radii, true);
   const double mu = 200e9 / 2.6, A = 0.25 * (4 - 4 * 0.3);
   for (std::size_t k = 0; k < radii.size(); ++k) {
     double worst = 0, at = 0, worst_d = 0, at_d = 0;
@@ -933,7 +918,7 @@ TEST(PureModeTwo, ACentreCrackOfEightCellsUnderRemoteShearGivesKIIWithinThreePer
 // CLEAVE_SF, CLEAVE_TRANSITS select the run; prints K_I, K_II, J1 at contours of 2, 3, 4 and 6 cells
 // and the crack opening against Griffith's along the crack.
 TEST(MixedModeStudy, DISABLED_Run) {
-  auto env = [](const char* k, double d) { const char* v = std::getenv(k); return v ? std::atof(v) : d; };
+  const auto env = test::env_number;
   InclinedSetup c;
   c.beta_deg = env("CLEAVE_BETA", 45), c.a_cells = env("CLEAVE_A_CELLS", 8), c.plate_over_a = env("CLEAVE_PLATE", 12);
   c.transits = env("CLEAVE_TRANSITS", 12), c.offset = env("CLEAVE_OFFSET", 0);
