@@ -17,6 +17,7 @@
 #include "libmpm/crack/crack2d.hpp"
 #include "libmpm/crack/crossing.hpp"
 #include "libmpm/crack/surface.hpp"
+#include "libmpm/mpm/crack_fields/line_weight.hpp"
 
 namespace {
 
@@ -618,5 +619,41 @@ TEST(TipCut, OutOfRangeIsRefusedNamingTheKey) {
     FAIL() << "expected a SceneError";
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("cracks[0].tip_cut"), std::string::npos) << e.what();
+  }
+}
+
+// Volume detection's crack weight (mpm/crack_fields/line_weight.hpp): the integral of a node's
+// bilinear hat along a segment, against closed forms and a fine midpoint rule.
+TEST(CrackLineWeight, TheHatIntegralAlongASegmentMatchesItsClosedFormsAndAFineQuadrature) {
+  using cleave::crack_fields::hat_integral_along;
+  const double h = 2e-3;
+  const Vec<2> node(0.01, -0.004);
+  const auto at = [&](double x, double y) { return Vec<2>(node.x() + x * h, node.y() + y * h); };
+  // Along the node row through the node, past the support: h; parallel at a distance d: h (1 - d/h).
+  EXPECT_NEAR(hat_integral_along(at(-3, 0), at(2.5, 0), node, h), h, 1e-15);
+  for (double d : {0.1, 0.25, 0.5, 0.9})
+    EXPECT_NEAR(hat_integral_along(at(-1.7, d), at(1.2, d), node, h), h * (1 - d), 1e-15) << d;
+  // The diagonal through the node: (1 - s / (sqrt 2 h))^2 over |s| < sqrt 2 h, 2 sqrt 2 h / 3.
+  EXPECT_NEAR(hat_integral_along(at(-1.5, -1.5), at(2, 2), node, h), 2 * std::sqrt(2.0) * h / 3, 1e-15);
+  // Outside the support, and a segment of no length: nothing.
+  EXPECT_EQ(hat_integral_along(at(1.0, -2), at(1.0, 2), node, h), 0.0);
+  EXPECT_EQ(hat_integral_along(at(0.2, 0.3), at(0.2, 0.3), node, h), 0.0);
+  // Any segment: a fine midpoint rule, and the sum of its two halves.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.6, 1.6);
+  for (int k = 0; k < 20; ++k) {
+    const Vec<2> a = at(u(rng), u(rng)), b = at(u(rng), u(rng));
+    const int n = 20000;
+    double sum = 0;
+    for (int i = 0; i < n; ++i) {
+      const Vec<2> x = a + (i + 0.5) / n * (b - a);
+      sum += std::max(0.0, 1 - std::fabs(x.x() - node.x()) / h) * std::max(0.0, 1 - std::fabs(x.y() - node.y()) / h);
+    }
+    sum *= (b - a).norm() / n;
+    const double exact = hat_integral_along(a, b, node, h);
+    EXPECT_NEAR(exact, sum, 1e-7 * h) << k;
+    EXPECT_NEAR(exact, hat_integral_along(a, 0.5 * (a + b), node, h) + hat_integral_along(0.5 * (a + b), b, node, h),
+                1e-15)
+        << k;
   }
 }

@@ -248,7 +248,8 @@ TEST(CrackRotation, ALoadedDcbSpinningAtATenthOfARadianPerMillisecondHasTheJItHa
 // CLEAVE_DCB_TRACTION (Pa, default 6e5), CLEAVE_DCB_CELL (mm, 2), CLEAVE_DCB_SHAPE (linear),
 // CLEAVE_DCB_LAW (frictionless), CLEAVE_DCB_OMEGA (rad/ms, 0.1); CLEAVE_DCB_VX (m/s) translates the
 // second run instead of spinning it; CLEAVE_DCB_TIP (mm) ends the crack there; CLEAVE_DCB_SHIFT (mm)
-// puts the second run's crack that far off its node line.
+// puts the second run's crack that far off its node line; CLEAVE_DCB_SPLIT (line, node) is the
+// crack's tip_split in both runs.
 TEST(CrackRotation, DISABLED_LoadedDcbStudy) {
   const auto number = test::env_number;
   const double omega = number("CLEAVE_DCB_OMEGA", 0.1);
@@ -257,6 +258,7 @@ TEST(CrackRotation, DISABLED_LoadedDcbStudy) {
     json s = loaded_dcb(w, number("CLEAVE_DCB_TRACTION", 6e5), number("CLEAVE_DCB_CELL", 2.0), shape ? shape : "linear");
     if (const char* law = std::getenv("CLEAVE_DCB_LAW")) s["cracks"][0]["contact"]["law"] = law;
     if (const char* tip = std::getenv("CLEAVE_DCB_TIP")) s["cracks"][0]["to"][0] = std::atof(tip);
+    if (const char* split = std::getenv("CLEAVE_DCB_SPLIT")) s["cracks"][0]["tip_split"] = split;
     if (w == 0.0) return s;
     if (const char* vx = std::getenv("CLEAVE_DCB_VX")) {
       s["bodies"][0].erase("angular_velocity"), s["bodies"][0].erase("rotation_center");
