@@ -151,6 +151,9 @@ MotionRun crack_motion(double h, double vx, double omega, double end_ms, int k_s
             {"cracks", {{{"name", "centre"}, {"from", {-6, 0}}, {"to", {6, 0}}, {"segment_length", h},
                           {"contact", {{"law", "frictionless"}, {"detection", detection}}}}}},
             {"time", {{"end", end_ms}, {"dt", 0.03125 * h}}}};  // CFL 0.34 with the moving plate's speed
+  // (Studies: CLEAVE_MOTION_TIP_CUT and CLEAVE_MOTION_TIP_SPLIT set the crack's tip_cut and tip_split.)
+  if (std::getenv("CLEAVE_MOTION_TIP_CUT")) s["cracks"][0]["tip_cut"] = test::env_number("CLEAVE_MOTION_TIP_CUT", 0.45);
+  if (const char* split = std::getenv("CLEAVE_MOTION_TIP_SPLIT")) s["cracks"][0]["tip_split"] = split;
   const double w = omega;  // rad/ms about the plate centre
   s["bodies"] = {{{"name", "top"}, {"material", "soft"}, {"shape", {{"type", "rectangle"}, {"min", {-15, 0}}, {"max", {15, 15}}}},
                   {"velocity", {vx, 100}}, {"angular_velocity", w}, {"rotation_center", {0, 0}}},
@@ -194,7 +197,12 @@ MotionDifference motion_difference(const MotionRun& rest, const MotionRun& movin
   for (std::size_t k = 0; k < upto(rest.opening.size()); ++k)
     for (std::size_t i = 0; i < rest.opening[k].size(); ++i) {
       d.peak_opening = std::max(d.peak_opening, rest.opening[k][i].norm());
-      d.opening = std::max(d.opening, (moving.opening[k][i] - rest.opening[k][i]).norm());
+      const double e = (moving.opening[k][i] - rest.opening[k][i]).norm();
+      if (e > d.opening && std::getenv("CLEAVE_MOTION_WHERE"))
+        std::printf("  larger difference %.4g mm at step %zu, point %zu of %zu: rest (%.4g, %.4g), moving (%.4g, %.4g) mm\n",
+                    e * 1e3, k, i, rest.opening[k].size(), rest.opening[k][i].x() * 1e3, rest.opening[k][i].y() * 1e3,
+                    moving.opening[k][i].x() * 1e3, moving.opening[k][i].y() * 1e3);
+      d.opening = std::max(d.opening, e);
     }
   if (c < rest.KI.size())
     for (std::size_t k = 0; k < upto(rest.KI[c].size()); ++k)
@@ -295,9 +303,12 @@ TEST(CrackMotion, DISABLED_ConvergenceStudy) {
 // cells (0-4 and 0-6 ms), and where the faces stop: the normal opening at 6 ms over the crack points
 // behind the tips, in cells. Prints; asserts nothing (about 1 minute on one thread). Run with
 // --gtest_also_run_disabled_tests --gtest_filter='CrackMotion.DISABLED_ClosingDetectionStudy'.
+// CLEAVE_MOTION_CELLS (mm, comma-separated) replaces the cell sizes, CLEAVE_MOTION_DETECTION the two detections.
 TEST(CrackMotion, DISABLED_ClosingDetectionStudy) {
-  for (double h : {1.0, 0.5, 0.25})
+  const char* only = std::getenv("CLEAVE_MOTION_DETECTION");
+  for (double h : test::env_numbers("CLEAVE_MOTION_CELLS", "1,0.5,0.25"))
     for (const char* det : {"volume", "displacement"}) {
+      if (only && std::string(only) != det) continue;
       const auto rest = crack_motion(h, 0, 0, 6, 0, {}, det);
       const auto moving = crack_motion(h, 500, 0.01, 6, 0, {}, det);
       const MotionDifference d4 = motion_difference(rest, moving, 4.0 / 6.0), d6 = motion_difference(rest, moving);
