@@ -166,8 +166,38 @@ MotionRun crack_motion(double h, double vx, double omega, double end_ms, int k_s
   MotionRun r;
   r.KI.resize(ts.size());
   r.J.resize(ts.size());
+  // CLEAVE_MOTION_POINT = i: every 20 steps, crack point i's tracked opening (normal, tangential) and the
+  // material's: the mean positions of the particles that started within a cell above and below it,
+  // their separation less its start value turned with the body (w t), in the crack's frame.
+  const long probe = std::getenv("CLEAVE_MOTION_POINT") ? std::atol(std::getenv("CLEAVE_MOTION_POINT")) : -1;
+  std::vector<std::size_t> up, down;
+  Vec<2> sep0 = Vec<2>::Zero();
+  const auto mean_of = [&](const std::vector<std::size_t>& set) {
+    Vec<2> x = Vec<2>::Zero();
+    for (std::size_t p : set) x += m.particles.x[p];
+    return Vec<2>(x / static_cast<double>(set.size()));
+  };
+  if (probe >= 0) {
+    const Vec<2> xi = m.cracks[0].points[static_cast<std::size_t>(probe)];
+    for (std::size_t p = 0; p < m.particles.size(); ++p) {
+      const Vec<2> r = m.particles.x[p] - xi;
+      if (std::fabs(r.x()) < 0.5e-3 * h && std::fabs(r.y()) < 1e-3 * h) (r.y() > 0 ? up : down).push_back(p);
+    }
+    sep0 = mean_of(up) - mean_of(down);
+  }
   for (long k = 1; k <= steps; ++k) {
     EXPECT_FALSE(st->step());
+    if (probe >= 0 && k % 20 == 0) {
+      const auto& c = m.cracks[0];
+      const std::size_t i = static_cast<std::size_t>(probe);
+      const Vec<2> t = (c.points[i + 1] - c.points[i - 1]).normalized(), n(-t.y(), t.x());
+      const double th = w * st->time() * 1e3;
+      const Vec<2> turned(std::cos(th) * sep0.x() - std::sin(th) * sep0.y(), std::sin(th) * sep0.x() + std::cos(th) * sep0.y());
+      const Vec<2> d = mean_of(up) - mean_of(down) - turned;
+      const Vec<2> o = io::crack_opening(c, i);
+      std::printf("P %ld %.3f ms: tracked (%.5f, %.5f) mm, material (%.5f, %.5f) mm\n", k, st->time() * 1e3, o.x() * 1e3,
+                  o.y() * 1e3, d.dot(n) * 1e3, d.dot(t) * 1e3);
+    }
     std::vector<Vec<2>> o;
     for (std::size_t i = 0; i < m.cracks[0].points.size(); ++i) o.push_back(io::crack_opening(m.cracks[0], i));
     r.opening.push_back(std::move(o));
@@ -310,7 +340,8 @@ TEST(CrackMotion, DISABLED_ClosingDetectionStudy) {
     for (const char* det : {"volume", "displacement"}) {
       if (only && std::string(only) != det) continue;
       const auto rest = crack_motion(h, 0, 0, 6, 0, {}, det);
-      const auto moving = crack_motion(h, 500, 0.01, 6, 0, {}, det);
+      const auto moving = crack_motion(h, test::env_number("CLEAVE_MOTION_VX", 500),
+                                       test::env_number("CLEAVE_MOTION_OMEGA", 0.01), 6, 0, {}, det);
       const MotionDifference d4 = motion_difference(rest, moving, 4.0 / 6.0), d6 = motion_difference(rest, moving);
       auto range = [&](const MotionRun& r) {  // min and max normal opening at 6 ms, interior points, / h
         const auto& o = r.opening.back();
