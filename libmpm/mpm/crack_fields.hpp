@@ -21,7 +21,8 @@
 //   classification.hpp  near-particle list, stencils and the field key of every pair (line crossing)
 //   field_slots.hpp     the extra fields of multi-field nodes and which one each pair uses
 //   crack_motion.hpp    the fields each crack surface follows; moving the cracks (Task 7)
-//   contact.hpp         contact detection and laws between a node's fields
+//   contact.hpp         contact detection and laws between a node's fields (line_weight.hpp: the
+//                       crack's weight in a node's volume, for volume detection)
 // This class is the stepper's interface: what each task of the step does with the crack fields.
 // The functions with loops that the stepper's particle and grid passes inline (slot iteration,
 // Task 1, the grid tasks) are defined here rather than taken from a layer: called through a base
