@@ -614,7 +614,8 @@ FreundRun run_freund(double H = 18, double halfwidth = 52, const std::vector<dou
             {"cracks", {{{"name", "c"}, {"from", {-halfwidth - 2, 0}}, {"to", {0.5, 0}}, {"segment_length", 1}}}},
             {"loads", {{{"type", "traction"}, {"body", "plate"}, {"face", "+y"}, {"traction", {0, 100}}},
                        {{"type", "traction"}, {"body", "plate"}, {"face", "-y"}, {"traction", {0, -100}}}}},
-            {"time", {{"end", 1}, {"cfl", 0.4}}}};
+            {"time", {{"end", 1}, {"cfl", test::env_number("CLEAVE_FREUND_CFL", 0.4)}}}};  // (the study's)
+  if (std::getenv("CLEAVE_FREUND_PPC")) s["bodies"][0]["particles_per_cell"] = static_cast<int>(test::env_number("CLEAVE_FREUND_PPC", 2));
   Model<2> m = build_model<2>(s);
   const double E = 200e9, nu = 0.3, rho = 7900, sigma = 2 * 100e6;
   const double cd = std::sqrt(E * (1 - nu) / (rho * (1 + nu) * (1 - 2 * nu)));
@@ -732,13 +733,15 @@ TEST(CrackTipFreund, DynamicKIFollowsTheClosedFormBeforeReflections) {
 // Study behind validation 1's contour radius (prints, asserts nothing): eq. 33's worst K_I error over
 // 1-3 transits of each contour. CLEAVE_FREUND_RADII (cells, comma-separated; default 4,5,6),
 // CLEAVE_FREUND_H and CLEAVE_FREUND_W (the plate's half-height and half-width in cells; default 30 and
-// 90, room for a 6-cell contour's window); CLEAVE_FREUND_POINTS the contour's points (16);
+// 90, room for a 6-cell contour's window); CLEAVE_FREUND_POINTS the contour's points (16),
+// CLEAVE_FREUND_CFL the time step's CFL number (0.4), CLEAVE_FREUND_PPC the particles per cell across (2);
 // CLEAVE_FREUND_TRACE prints every sample's error per radius.
 // Also against Freund's K for the load the faces receive (K_duhamel). Measured (session 28): plate
 // H = 18, radii 2 / 3 / 4: 8.20 / 7.63 / 3.46 % (against the load received 2.83 / 2.64 / 3.21 %);
 // H = 30: radii 4 / 5 / 6: 5.71 / 4.16 / 2.76 % (2.94 / 2.91 / 2.67 %). The error rings about zero
 // (4 cells, H = 18: -3.46 % at 1.25 transits, +1.97 % at 1.65, -2.55 % at 2.65), and so does the
-// received load's reference: the smeared step front rings behind it. 32 contour points: 3.37 %.
+// received load's reference: the smeared step front rings behind it. 32 contour points: 3.37 %; CFL 0.3
+// and 0.5: 3.44 and 3.46 %; 3 and 4 particles per cell: 4.16 and 4.12 %.
 TEST(CrackTipFreundStudy, DISABLED_Run) {
   const std::vector<double> radii = test::env_numbers("CLEAVE_FREUND_RADII", "4,5,6");
   const FreundRun r =
