@@ -152,10 +152,11 @@ MotionRun crack_motion(double h, double vx, double omega, double end_ms, int k_s
                           {"contact", {{"law", "frictionless"}, {"detection", detection}}}}}},
             {"time", {{"end", end_ms}, {"dt", 0.03125 * h}}}};  // CFL 0.34 with the moving plate's speed
   // (Studies: CLEAVE_MOTION_TIP_CUT and CLEAVE_MOTION_TIP_SPLIT set the crack's tip_cut and tip_split,
-  // CLEAVE_MOTION_SHAPE the shape functions.)
+  // CLEAVE_MOTION_SHAPE the shape functions, CLEAVE_MOTION_LAW the contact law.)
   if (std::getenv("CLEAVE_MOTION_TIP_CUT")) s["cracks"][0]["tip_cut"] = test::env_number("CLEAVE_MOTION_TIP_CUT", 0.45);
   if (const char* split = std::getenv("CLEAVE_MOTION_TIP_SPLIT")) s["cracks"][0]["tip_split"] = split;
   if (const char* shape = std::getenv("CLEAVE_MOTION_SHAPE")) s["mpm"]["shape_function"] = shape;
+  if (const char* law = std::getenv("CLEAVE_MOTION_LAW")) s["cracks"][0]["contact"]["law"] = law;
   const double w = omega;  // rad/ms about the plate centre
   s["bodies"] = {{{"name", "top"}, {"material", "soft"}, {"shape", {{"type", "rectangle"}, {"min", {-15, 0}}, {"max", {15, 15}}}},
                   {"velocity", {vx, 100}}, {"angular_velocity", w}, {"rotation_center", {0, 0}}},
