@@ -7,6 +7,8 @@
 #include <array>
 #include <map>
 
+#include <Eigen/Geometry>
+
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/io/crack_output.hpp"
 #include "support.hpp"
@@ -172,7 +174,7 @@ MotionRun crack_motion(double h, double vx, double omega, double end_ms, int k_s
   // CLEAVE_MOTION_POINT = i: every 20 steps, crack point i's tracked opening (normal, tangential) and the
   // material's: the mean positions of the particles that started within a cell above and below it,
   // their separation less its start value turned with the body (w t), in the crack's frame.
-  const long probe = std::getenv("CLEAVE_MOTION_POINT") ? std::atol(std::getenv("CLEAVE_MOTION_POINT")) : -1;
+  const long probe = std::lround(test::env_number("CLEAVE_MOTION_POINT", -1));
   std::vector<std::size_t> up, down;
   Vec<2> sep0 = Vec<2>::Zero();
   const auto mean_of = [&](const std::vector<std::size_t>& set) {
@@ -194,9 +196,7 @@ MotionRun crack_motion(double h, double vx, double omega, double end_ms, int k_s
       const auto& c = m.cracks[0];
       const std::size_t i = static_cast<std::size_t>(probe);
       const Vec<2> t = (c.points[i + 1] - c.points[i - 1]).normalized(), n(-t.y(), t.x());
-      const double th = w * st->time() * 1e3;
-      const Vec<2> turned(std::cos(th) * sep0.x() - std::sin(th) * sep0.y(), std::sin(th) * sep0.x() + std::cos(th) * sep0.y());
-      const Vec<2> d = mean_of(up) - mean_of(down) - turned;
+      const Vec<2> d = mean_of(up) - mean_of(down) - Eigen::Rotation2Dd(w * st->time() * 1e3) * sep0;
       const Vec<2> o = io::crack_opening(c, i);
       std::printf("P %ld %.3f ms: tracked (%.5f, %.5f) mm, material (%.5f, %.5f) mm\n", k, st->time() * 1e3, o.x() * 1e3,
                   o.y() * 1e3, d.dot(n) * 1e3, d.dot(t) * 1e3);
