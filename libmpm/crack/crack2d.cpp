@@ -231,7 +231,7 @@ std::vector<Crack2D> parse_cracks(const nlohmann::json& cracks, const std::strin
     c.tip[1] = c.tips == "both" || c.tips == "end" || c.tips == "auto";
     set_polyline_segments(c);
     c.update_extent();
-    c.above = c.below = c.points;
+    c.above = c.below = c.reference = c.points;
     out.push_back(std::move(c));
   }
   return out;

@@ -80,6 +80,11 @@ struct ExplicitCrack : Surface<Dim>, FrontsOf<Dim>, ContactSettings {
   // The faces above and below (crack particles moved with the velocity field of each side), in
   // step with `points`; the crack opening displacement is above - below. Set from points when empty.
   std::vector<Vec<Dim>> above, below;
+  // 2D: the points where the material they cut stood at t = 0 (the reference configuration), in step
+  // with `points`: a particle a hair from the crack's line is sorted by its side of this line
+  // (crack/reference_side.hpp). Set from points when the scene is read; a growing crack grows it at
+  // the same kink angles (crack_growth.cpp). Empty in 3D.
+  std::vector<Vec<Dim>> reference;
   // Extent (Surface::lo, hi) of all vertices: empty (+inf / -inf) until update_extent(), so that a
   // crack whose extent was never computed screens every pair out; call it after moving the points.
   void update_extent() {

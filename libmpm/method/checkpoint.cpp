@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 namespace {
 // Format 4 is the first shared by every method (formats 1-3 were per method); 5 adds the crack-tip
 // table's last records (method/tip_table.hpp) to every method's state.
-constexpr char kMagic[8] = {'C', 'L', 'V', 'E', 'C', 'K', 'P', '5'};
+constexpr char kMagic[8] = {'C', 'L', 'V', 'E', 'C', 'K', 'P', '6'};
 }  // namespace
 
 template <int Dim>

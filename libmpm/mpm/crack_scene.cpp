@@ -96,7 +96,7 @@ void cut_through_near_edges(Model<2>& m) {
                            ", where it is a mouth, not a tip");
       if (end == 0) c.points.insert(c.points.begin(), through);
       else c.points.push_back(through);
-      c.above = c.below = c.points;
+      c.above = c.below = c.reference = c.points;
       crack::set_polyline_segments(c);
       c.tip[end] = 0;
       c.update_extent();
@@ -221,7 +221,7 @@ void join_pair(Model<2>& m, const EndPair& e) {
   if (a.tips != "auto" || b.tips != "auto") a.tips = tip0 && tip1 ? "both" : tip0 ? "start" : tip1 ? "end" : "none";
   a.tip = {tip0, tip1};
   a.points = std::move(pts);
-  a.above = a.below = a.points;
+  a.above = a.below = a.reference = a.points;
   crack::set_polyline_segments(a);
   a.update_extent();
   m.cracks.erase(m.cracks.begin() + static_cast<std::ptrdiff_t>(e.j));

@@ -21,6 +21,7 @@
 
 #include "libmpm/core/parallel.hpp"
 #include "libmpm/crack/propagation.hpp"
+#include "libmpm/crack/reference_side.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/mpm/model.hpp"
 #include "libmpm/mpm/stencil.hpp"
@@ -54,6 +55,9 @@ inline std::vector<crack::Crack2D> cracks_near(const std::vector<crack::Crack2D>
     crack::Crack2D l;
     l.id = c.id;
     l.points.assign(c.points.begin() + static_cast<std::ptrdiff_t>(first), c.points.begin() + static_cast<std::ptrdiff_t>(last + 2));
+    if (c.reference.size() == c.points.size())
+      l.reference.assign(c.reference.begin() + static_cast<std::ptrdiff_t>(first),
+                         c.reference.begin() + static_cast<std::ptrdiff_t>(last + 2));
     l.Surface<2>::update_extent();
     if (c.cuts()) {  // the crack's cut ends as the stepper's crossing sees them (ExplicitCrack::cut_end)
       l.tip_cut = c.tip_cut, l.cut_end = c.cut_end, l.cut_reach = c.cut_reach, l.cut_away = c.cut_away;
@@ -261,14 +265,21 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       // Eq. 36: nodal sums per (node, field key).
       // (Nodes of the particles within reach: up to 2 cells beyond them with uGIMP.)
       detail::TipNodeSums sums(G.nodes, f.tip.array() - (reach + 3.0 * h), f.tip.array() + (reach + 3.0 * h), G.origin, h);
+      // Where the crossing test takes each particle: a hair from a crack's line, on its reference side
+      // (crack/reference_side.hpp), as the stepper sorts it.
+      std::vector<V> sort_x(around.size());
+      for (std::size_t k = 0; k < around.size(); ++k)
+        sort_x[k] = crack::sorting_position(local, P.x[around[k]], P.x[around[k]] - P.u[around[k]], crack::kSortingHair * h);
       std::vector<std::size_t> inside;
+      std::vector<V> inside_x;
       std::size_t nearest = P.size();
       double nearest_d = INFINITY;
-      for (std::size_t p : around) {
+      for (std::size_t k = 0; k < around.size(); ++k) {
+        const std::size_t p = around[k];
         const double d = (P.x[p] - f.tip).norm();
         if (d > reach || other(p)) continue;
         if (d < nearest_d) nearest_d = d, nearest = p;
-        if (ts.volume_term && crack::inside_contour(f, ts, h, P.x[p])) inside.push_back(p);
+        if (ts.volume_term && crack::inside_contour(f, ts, h, P.x[p])) inside.push_back(p), inside_x.push_back(sort_x[k]);
         const auto& s = P.stress[p];
         const auto& e = P.strain[p];
         const Material<2>& mat = *m.materials[P.material[p]];
@@ -280,7 +291,7 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
         st.for_each_weight([&](int64_t n, double w) {
           if (w == 0.0) return;
-          const uint32_t key = crack::field_key(local, P.x[p], node_pos(n));
+          const uint32_t key = crack::field_key(local, sort_x[k], node_pos(n));
           if (key == crack::kFieldKeyOverflow) return;
           detail::TipFieldSums* ap = sums.get(n, key);
           if (!ap) return;  // (never: the box holds every node of these particles)
@@ -351,12 +362,13 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
       }
       // Eq. 33's volume term, sum m_p / b [(grad u)^T a - (grad v)^T v] over the particles inside
       // (b the thickness: J is per unit length of crack front).
-      for (std::size_t p : inside) {
+      for (std::size_t i = 0; i < inside.size(); ++i) {
+        const std::size_t p = inside[i];
         St st;
         st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
         Mat<2> gv = Mat<2>::Zero();
         st.for_each([&](int64_t n, double, const V& g) {
-          const detail::TipFieldSums* it = sums.find(n, crack::field_key(local, P.x[p], node_pos(n)));
+          const detail::TipFieldSums* it = sums.find(n, crack::field_key(local, inside_x[i], node_pos(n)));
           if (it && it->m > 0.0) gv += (it->v / it->m) * g.transpose();
         });
         J += P.mass[p] / thickness[p] * (grad_u(p).transpose() * accel(p) - gv.transpose() * (v_rel(p) - v_tip));
@@ -438,9 +450,9 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         // within 20 cells (docs/validation.md, growing cracks 2).
         const V nrm = off.normalized(), along(nrm.y(), -nrm.x());
         double gap_above = INFINITY, gap_below = -INFINITY;
-        for (std::size_t p : around) {
-          if (other(p)) continue;
-          const V r = P.x[p] - x;
+        for (std::size_t k = 0; k < around.size(); ++k) {
+          if (other(around[k])) continue;
+          const V r = sort_x[k] - x;
           const double d = r.dot(nrm);
           if (std::abs(r.dot(along)) > 0.5 * h || std::abs(d) > 1.5 * h) continue;
           if (d > 0.0) gap_above = std::min(gap_above, d);

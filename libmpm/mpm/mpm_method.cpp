@@ -269,7 +269,7 @@ class MpmMethod final : public Method<Dim> {
     const auto& P = m_.particles;
     w.array(P.x), w.array(P.v), w.array(P.u), w.array(P.stress), w.array(P.strain), w.array(P.rotation);
     if (!P.rotation3.empty()) w.array(P.rotation3);  // 3D with crack-front parameters only
-    for (const auto& c : m_.cracks) w.array(c.points), w.array(c.above), w.array(c.below);
+    for (const auto& c : m_.cracks) w.array(c.points), w.array(c.above), w.array(c.below), w.array(c.reference);
     table_.save(w);
     if (relax_) relax_->save(w);
     if (growth_) growth_->save(w);
@@ -288,8 +288,10 @@ class MpmMethod final : public Method<Dim> {
         r.array_sized(c.points, "crack points", 2, std::size_t(1) << 28);
         r.array_sized(c.above, "crack points", c.points.size(), c.points.size());
         r.array_sized(c.below, "crack points", c.points.size(), c.points.size());
+        r.array_sized(c.reference, "crack points", c.points.size(), c.points.size());
       } else {
         r.array(c.points, "crack points"), r.array(c.above, "crack points"), r.array(c.below, "crack points");
+        r.array(c.reference, "crack points");
       }
       c.update_extent();
     }

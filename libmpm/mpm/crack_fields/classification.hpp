@@ -16,6 +16,7 @@
 #include "libmpm/core/parallel.hpp"
 #include "libmpm/crack/crack2d.hpp"
 #include "libmpm/crack/crossing3d.hpp"
+#include "libmpm/crack/reference_side.hpp"
 #include "libmpm/mpm/crack_fields/body_groups.hpp"
 #include "libmpm/mpm/model.hpp"
 #include "libmpm/mpm/stencil.hpp"
@@ -241,6 +242,25 @@ class Classification : public BodyGroups<Dim, SF> {
         std::fill_n(&pair_key_[k * N], N, 0u);
         continue;
       }
+      // A particle a hair from a crack's line is sorted by its side in the reference configuration
+      // (crack/reference_side.hpp): the crossing test takes it at xc, the nearest such crack deciding.
+      V xc = xp;
+      {
+        double hair = crack::kSortingHair * G_.h;
+        const V X = xp - P_.u[p];
+        auto consider = [&](int32_t crack, int32_t a, int32_t b) {
+          double dist = 0.0;
+          V out = xp;
+          bool moved = false;
+          if (a <= b && crack::reference_side(cracks_[crack], a, b, xp, X, hair, dist, out, moved) && dist < hair)
+            hair = dist, xc = moved ? out : xp;
+        };
+        if (nsub >= 0)
+          for (int e = 0; e < nsub; ++e) consider(sub[e].crack, sub[e].lo, sub[e].hi);
+        else
+          for (int32_t e = cell_head_[cell]; e >= 0; e = entries_[e].next)
+            consider(entries_[e].crack, entries_[e].seg_lo, entries_[e].seg_hi);
+      }
       int j = 0;
       s.for_each_weight([&](int64_t, double w) {
         const std::size_t q = k * N + j;
@@ -248,8 +268,8 @@ class Classification : public BodyGroups<Dim, SF> {
         ++j;
         pair_key_[q] = 0;
         if (w == 0.0) return;  // no contribution: no field needed
-        pair_key_[q] = nsub >= 0 ? classify_sub(sub, nsub, xp, xn, &pair_seg_[2 * q])
-                                 : classify_in_cell(cell, xp, xn, &pair_seg_[2 * q]);
+        pair_key_[q] = nsub >= 0 ? classify_sub(sub, nsub, xc, xn, &pair_seg_[2 * q])
+                                 : classify_in_cell(cell, xc, xn, &pair_seg_[2 * q]);
       });
     }
   }
