@@ -218,27 +218,34 @@ TEST(CrackGrowth, ATipThatReachesAnotherCrackJoinsItAndStops) {
   EXPECT_NEAR(m.cracks[0].points.back().x(), 10.3e-3, 0.05e-3);
 }
 
+// The whole text of a file ("" when it is missing).
+std::string read_text(const std::filesystem::path& f) {
+  std::ifstream in(f);
+  std::stringstream b;
+  b << in.rdbuf();
+  return b.str();
+}
+
+// Runs the scene into `out` as `cleave run` does (resuming from its checkpoint when asked) on `threads`.
+void run_in(const json& scene, const std::filesystem::path& out, bool resume, int threads) {
+  const int was = omp_get_max_threads();
+  omp_set_num_threads(threads);
+  Model<2> m = build_model<2>(scene);
+  RunOptions opt;
+  opt.out = out;
+  opt.resume = resume;
+  run_model<2>(m, opt);
+  omp_set_num_threads(was);
+}
+
 // Checkpoint and --resume, and 1 or 2 threads: the same path bit for bit (2 mm cells).
 TEST(CrackGrowth, ResumeAndThreadCountGiveTheSamePathBitForBit) {
   const auto base = std::filesystem::path(CLEAVE_BINARY_DIR) / "test_out" / "crack_growth_resume";
   std::filesystem::remove_all(base);
-  auto read = [](const std::filesystem::path& f) {
-    std::ifstream in(f);
-    std::stringstream b;
-    b << in.rdbuf();
-    return b.str();
-  };
   json s = growing_plate(2.0, 20.0);
   s["output"]["interval"] = 4e-6;
   auto run = [&](const json& scene, const std::string& dir, bool resume, int threads) {
-    const int was = omp_get_max_threads();
-    omp_set_num_threads(threads);
-    Model<2> m = build_model<2>(scene);
-    RunOptions opt;
-    opt.out = base / dir;
-    opt.resume = resume;
-    run_model<2>(m, opt);
-    omp_set_num_threads(was);
+    run_in(scene, base / dir, resume, threads);
   };
   run(s, "whole", false, 2);
   json first = s;
@@ -246,13 +253,13 @@ TEST(CrackGrowth, ResumeAndThreadCountGiveTheSamePathBitForBit) {
   run(first, "split", false, 2);
   run(s, "split", true, 2);
   run(s, "one_thread", false, 1);
-  const std::string whole = read(base / "whole" / "crack_growth.csv");
+  const std::string whole = read_text(base / "whole" / "crack_growth.csv");
   EXPECT_GT(std::count(whole.begin(), whole.end(), '\n'), 10);
-  EXPECT_EQ(read(base / "split" / "crack_growth.csv"), whole);
-  EXPECT_EQ(read(base / "one_thread" / "crack_growth.csv"), whole);
-  const std::string frame = read(base / "whole" / "cracks_000005.vtu");
+  EXPECT_EQ(read_text(base / "split" / "crack_growth.csv"), whole);
+  EXPECT_EQ(read_text(base / "one_thread" / "crack_growth.csv"), whole);
+  const std::string frame = read_text(base / "whole" / "cracks_000005.vtu");
   EXPECT_FALSE(frame.empty());
-  EXPECT_EQ(read(base / "split" / "cracks_000005.vtu"), frame);
+  EXPECT_EQ(read_text(base / "split" / "cracks_000005.vtu"), frame);
 }
 
 // The same for validation 2's crack 1e-4 cell above a particle row, whose row is sorted by its side of
@@ -262,23 +269,10 @@ TEST(CrackGrowth, ResumeAndThreadCountGiveTheSamePathBitForBit) {
 TEST(CrackGrowth, AResumedCrackAHairFromAParticleRowGrowsTheSamePathBitForBit) {
   const auto base = std::filesystem::path(CLEAVE_BINARY_DIR) / "test_out" / "crack_growth_resume_near_row";
   std::filesystem::remove_all(base);
-  auto read = [](const std::filesystem::path& f) {
-    std::ifstream in(f);
-    std::stringstream b;
-    b << in.rdbuf();
-    return b.str();
-  };
   json s = off_line_plate(0.2501);
   s["output"]["interval"] = 4e-6;
   auto run = [&](const json& scene, const std::string& dir, bool resume, int threads) {
-    const int was = omp_get_max_threads();
-    omp_set_num_threads(threads);
-    Model<2> m = build_model<2>(scene);
-    RunOptions opt;
-    opt.out = base / dir;
-    opt.resume = resume;
-    run_model<2>(m, opt);
-    omp_set_num_threads(was);
+    run_in(scene, base / dir, resume, threads);
   };
   run(s, "whole", false, 2);
   json first = s;
@@ -286,13 +280,13 @@ TEST(CrackGrowth, AResumedCrackAHairFromAParticleRowGrowsTheSamePathBitForBit) {
   run(first, "split", false, 2);
   run(s, "split", true, 2);
   run(s, "one_thread", false, 1);
-  const std::string whole = read(base / "whole" / "crack_growth.csv");
+  const std::string whole = read_text(base / "whole" / "crack_growth.csv");
   EXPECT_GT(std::count(whole.begin(), whole.end(), '\n'), 40);
-  EXPECT_EQ(read(base / "split" / "crack_growth.csv"), whole);
-  EXPECT_EQ(read(base / "one_thread" / "crack_growth.csv"), whole);
-  const std::string frame = read(base / "whole" / "cracks_000010.vtu");
+  EXPECT_EQ(read_text(base / "split" / "crack_growth.csv"), whole);
+  EXPECT_EQ(read_text(base / "one_thread" / "crack_growth.csv"), whole);
+  const std::string frame = read_text(base / "whole" / "cracks_000010.vtu");
   EXPECT_FALSE(frame.empty());
-  EXPECT_EQ(read(base / "split" / "cracks_000010.vtu"), frame);
+  EXPECT_EQ(read_text(base / "split" / "cracks_000010.vtu"), frame);
 }
 
 // --- validation 1: the kink of an inclined centre crack ------------------------------------------
