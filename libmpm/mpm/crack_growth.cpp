@@ -27,9 +27,9 @@ double ray_hit(const Vec<2>& a, const Vec<2>& d, double L, const Vec<2>& p, cons
 // grown from the tip at angle theta to the tip's direction, grown from the reference tip at theta to
 // the reference tip's direction, as long. A crack that grows straight on in the body grows straight
 // on there, whatever its current line's drift against the material. (The new point's own reference
-// place, to - u(to), carries that drift: a growing crack 1e-4 cell above a particle row then crossed
-// the row in the reference configuration too. Mapped back with the material's mean rotation and
-// strain ahead of the tip, the near-tip strain turned it: 0.58 cell off its line within 20 cells.)
+// place, to - u(to), would carry that drift, which is what crossed a particle row 1e-4 cell below a
+// growing crack; not tried. Mapped back with the material's mean rotation and strain ahead of the tip,
+// the near-tip strain turned it: 0.58 cell off its line within 20 cells.)
 Vec<2> reference_of(const crack::Crack2D& c, int end, double theta, double length) {
   const std::size_t n = c.reference.size();
   const Vec<2> tip = end == 1 ? c.reference[n - 1] : c.reference[0];
