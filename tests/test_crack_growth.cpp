@@ -12,12 +12,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "libmpm/crack/propagation.hpp"
 #include "libmpm/mpm/crack_growth.hpp"
+#include "files.hpp"
 #include "support.hpp"
 
 namespace cleave {
@@ -218,14 +217,6 @@ TEST(CrackGrowth, ATipThatReachesAnotherCrackJoinsItAndStops) {
   EXPECT_NEAR(m.cracks[0].points.back().x(), 10.3e-3, 0.05e-3);
 }
 
-// The whole text of a file ("" when it is missing).
-std::string read_text(const std::filesystem::path& f) {
-  std::ifstream in(f);
-  std::stringstream b;
-  b << in.rdbuf();
-  return b.str();
-}
-
 // Runs the scene into `out` as `cleave run` does (resuming from its checkpoint when asked) on `threads`.
 void run_in(const json& scene, const std::filesystem::path& out, bool resume, int threads) {
   const int was = omp_get_max_threads();
@@ -238,28 +229,31 @@ void run_in(const json& scene, const std::filesystem::path& out, bool resume, in
   omp_set_num_threads(was);
 }
 
-// Checkpoint and --resume, and 1 or 2 threads: the same path bit for bit (2 mm cells).
-TEST(CrackGrowth, ResumeAndThreadCountGiveTheSamePathBitForBit) {
-  const auto base = std::filesystem::path(CLEAVE_BINARY_DIR) / "test_out" / "crack_growth_resume";
+// The scene (output every 4 us) run whole on 2 threads, stopped at 12 us mid-growth and resumed, and
+// run on one thread, under test_out/`dir`: the same crack_growth.csv (more than `rows` lines) and the
+// same crack frame `frame`, bit for bit.
+void expect_one_path_resumed_and_on_one_thread(json s, const std::string& dir, long rows, const std::string& frame) {
+  const auto base = std::filesystem::path(CLEAVE_BINARY_DIR) / "test_out" / dir;
   std::filesystem::remove_all(base);
-  json s = growing_plate(2.0, 20.0);
   s["output"]["interval"] = 4e-6;
-  auto run = [&](const json& scene, const std::string& dir, bool resume, int threads) {
-    run_in(scene, base / dir, resume, threads);
-  };
-  run(s, "whole", false, 2);
+  run_in(s, base / "whole", false, 2);
   json first = s;
   first["time"]["end"] = 12e-6;  // stops at the frame (and checkpoint) of 12 us, mid-growth
-  run(first, "split", false, 2);
-  run(s, "split", true, 2);
-  run(s, "one_thread", false, 1);
-  const std::string whole = read_text(base / "whole" / "crack_growth.csv");
-  EXPECT_GT(std::count(whole.begin(), whole.end(), '\n'), 10);
-  EXPECT_EQ(read_text(base / "split" / "crack_growth.csv"), whole);
-  EXPECT_EQ(read_text(base / "one_thread" / "crack_growth.csv"), whole);
-  const std::string frame = read_text(base / "whole" / "cracks_000005.vtu");
-  EXPECT_FALSE(frame.empty());
-  EXPECT_EQ(read_text(base / "split" / "cracks_000005.vtu"), frame);
+  run_in(first, base / "split", false, 2);
+  run_in(s, base / "split", true, 2);
+  run_in(s, base / "one_thread", false, 1);
+  const std::string whole = test::read_text(base / "whole" / "crack_growth.csv");
+  EXPECT_GT(std::count(whole.begin(), whole.end(), '\n'), rows);
+  EXPECT_EQ(test::read_text(base / "split" / "crack_growth.csv"), whole);
+  EXPECT_EQ(test::read_text(base / "one_thread" / "crack_growth.csv"), whole);
+  const std::string cracks = test::read_text(base / "whole" / frame);
+  EXPECT_FALSE(cracks.empty()) << frame;
+  EXPECT_EQ(test::read_text(base / "split" / frame), cracks);
+}
+
+// Checkpoint and --resume, and 1 or 2 threads: the same path bit for bit (2 mm cells).
+TEST(CrackGrowth, ResumeAndThreadCountGiveTheSamePathBitForBit) {
+  expect_one_path_resumed_and_on_one_thread(growing_plate(2.0, 20.0), "crack_growth_resume", 10, "cracks_000005.vtu");
 }
 
 // The same for validation 2's crack 1e-4 cell above a particle row, whose row is sorted by its side of
@@ -267,26 +261,8 @@ TEST(CrackGrowth, ResumeAndThreadCountGiveTheSamePathBitForBit) {
 // the resumed run sorts the row as the whole run does (a build that dropped it on loading failed
 // here), and so does a run on one thread.
 TEST(CrackGrowth, AResumedCrackAHairFromAParticleRowGrowsTheSamePathBitForBit) {
-  const auto base = std::filesystem::path(CLEAVE_BINARY_DIR) / "test_out" / "crack_growth_resume_near_row";
-  std::filesystem::remove_all(base);
-  json s = off_line_plate(0.2501);
-  s["output"]["interval"] = 4e-6;
-  auto run = [&](const json& scene, const std::string& dir, bool resume, int threads) {
-    run_in(scene, base / dir, resume, threads);
-  };
-  run(s, "whole", false, 2);
-  json first = s;
-  first["time"]["end"] = 12e-6;  // stops at the frame (and checkpoint) of 12 us, mid-growth
-  run(first, "split", false, 2);
-  run(s, "split", true, 2);
-  run(s, "one_thread", false, 1);
-  const std::string whole = read_text(base / "whole" / "crack_growth.csv");
-  EXPECT_GT(std::count(whole.begin(), whole.end(), '\n'), 40);
-  EXPECT_EQ(read_text(base / "split" / "crack_growth.csv"), whole);
-  EXPECT_EQ(read_text(base / "one_thread" / "crack_growth.csv"), whole);
-  const std::string frame = read_text(base / "whole" / "cracks_000010.vtu");
-  EXPECT_FALSE(frame.empty());
-  EXPECT_EQ(read_text(base / "split" / "cracks_000010.vtu"), frame);
+  expect_one_path_resumed_and_on_one_thread(off_line_plate(0.2501), "crack_growth_resume_near_row", 40,
+                                            "cracks_000010.vtu");
 }
 
 // --- validation 1: the kink of an inclined centre crack ------------------------------------------

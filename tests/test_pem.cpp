@@ -10,7 +10,6 @@
 #include "libmpm/core/error.hpp"
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "libmpm/method/method.hpp"
 #include "libmpm/method/run_loop.hpp"
@@ -18,6 +17,7 @@
 #include "libmpm/pem/pair_law.hpp"
 #include "libmpm/pem/pem_scene.hpp"
 #include "libmpm/pem/pem_solver.hpp"
+#include "files.hpp"
 
 namespace {
 
@@ -526,12 +526,6 @@ TEST(PemDeterminism, ThreadCountAndResumeGiveTheSameFilesBitForBit) {
     SCOPED_TRACE(tips ? "tip growth" : "pair rule");
     const auto base = std::filesystem::path(CLEAVE_BINARY_DIR) / "test_out" / (tips ? "pem_determinism_tips" : "pem_determinism");
     std::filesystem::remove_all(base);
-    auto read = [](const std::filesystem::path& f) {
-      std::ifstream in(f, std::ios::binary);
-      std::stringstream b;
-      b << in.rdbuf();
-      return b.str();
-    };
     json s = scene_file("pem_brazilian_cracked.json");
     if (!tips) s["pem"].erase("tip_growth");
     s["time"]["end"] = tips ? 0.5 : 0.6;  // ms
@@ -551,19 +545,19 @@ TEST(PemDeterminism, ThreadCountAndResumeGiveTheSameFilesBitForBit) {
     run(first, "split", false, 2);
     run(s, "split", true, 2);
     run(s, "one", false, 1);
-    const std::string whole = read(base / "two" / "global.csv");
+    const std::string whole = test::read_text(base / "two" / "global.csv");
     EXPECT_GT(std::count(whole.begin(), whole.end(), '\n'), 100);
-    EXPECT_EQ(read(base / "one" / "global.csv"), whole);
-    EXPECT_EQ(read(base / "split" / "global.csv"), whole);
+    EXPECT_EQ(test::read_text(base / "one" / "global.csv"), whole);
+    EXPECT_EQ(test::read_text(base / "split" / "global.csv"), whole);
     const std::string last = tips ? "000005" : "000006";
     for (const std::string& f : {"particles_" + last + ".vtu", "cracks_" + last + ".vtu"}) {
-      EXPECT_EQ(read(base / "one" / f), read(base / "two" / f)) << f;
-      EXPECT_EQ(read(base / "split" / f), read(base / "two" / f)) << f;
+      EXPECT_EQ(test::read_text(base / "one" / f), test::read_text(base / "two" / f)) << f;
+      EXPECT_EQ(test::read_text(base / "split" / f), test::read_text(base / "two" / f)) << f;
     }
     if (tips) {  // both tips grew before the split and after it
-      const json info = json::parse(read(base / "split" / "run.json"));
+      const json info = json::parse(test::read_text(base / "split" / "run.json"));
       for (const auto& tip : info["tips"]) EXPECT_LT(tip["started_s"].get<double>(), 0.4e-3);
-      EXPECT_EQ(info["tips"], json::parse(read(base / "two" / "run.json"))["tips"]);
+      EXPECT_EQ(info["tips"], json::parse(test::read_text(base / "two" / "run.json"))["tips"]);
     }
   }
 }

@@ -65,22 +65,28 @@ inline bool reference_side(const ExplicitCrack<2>& c, int32_t lo, int32_t hi, co
   return true;
 }
 
-// The same against every crack of `cracks` (each over all its segments), the nearest within the hair
-// deciding: x itself when none is that near or the nearest agrees.
-template <class Cracks>
-Vec<2> sorting_position(const Cracks& cracks, const Vec<2>& x, const Vec<2>& X, double hair) {
-  double nearest = hair;
-  Vec<2> at = x;
-  for (const auto& c : cracks) {
-    if (c.points.size() < 2) continue;
+// One particle against several cracks, or the index ranges of their segments (consider each): the
+// nearest crack within the hair decides; `at` is where the crossing test takes the particle (x itself
+// when no crack is that near or the nearest agrees).
+struct SortingPosition {
+  Vec<2> x, X, at;
+  double hair;
+  SortingPosition(const Vec<2>& x_, const Vec<2>& X_, double hair_) : x(x_), X(X_), at(x_), hair(hair_) {}
+  void consider(const ExplicitCrack<2>& c, int32_t lo, int32_t hi) {
     double dist = 0.0;
     Vec<2> out = x;
     bool moved = false;
-    if (reference_side(c, 0, static_cast<int32_t>(c.points.size()) - 2, x, X, nearest, dist, out, moved) &&
-        dist < nearest)
-      nearest = dist, at = moved ? out : x;
+    // (reference_side answers only for a crack nearer than the hair, which then shrinks to it)
+    if (lo <= hi && reference_side(c, lo, hi, x, X, hair, dist, out, moved)) hair = dist, at = moved ? out : x;
   }
-  return at;
+};
+
+// The same against every crack of `cracks`, each over all its segments.
+template <class Cracks>
+Vec<2> sorting_position(const Cracks& cracks, const Vec<2>& x, const Vec<2>& X, double hair) {
+  SortingPosition sp(x, X, hair);
+  for (const auto& c : cracks) sp.consider(c, 0, static_cast<int32_t>(c.points.size()) - 2);
+  return sp.at;
 }
 
 }  // namespace cleave::crack

@@ -244,23 +244,13 @@ class Classification : public BodyGroups<Dim, SF> {
       }
       // A particle a hair from a crack's line is sorted by its side in the reference configuration
       // (crack/reference_side.hpp): the crossing test takes it at xc, the nearest such crack deciding.
-      V xc = xp;
-      {
-        double hair = crack::kSortingHair * G_.h;
-        const V X = xp - P_.u[p];
-        auto consider = [&](int32_t crack, int32_t a, int32_t b) {
-          double dist = 0.0;
-          V out = xp;
-          bool moved = false;
-          if (a <= b && crack::reference_side(cracks_[crack], a, b, xp, X, hair, dist, out, moved) && dist < hair)
-            hair = dist, xc = moved ? out : xp;
-        };
-        if (nsub >= 0)
-          for (int e = 0; e < nsub; ++e) consider(sub[e].crack, sub[e].lo, sub[e].hi);
-        else
-          for (int32_t e = cell_head_[cell]; e >= 0; e = entries_[e].next)
-            consider(entries_[e].crack, entries_[e].seg_lo, entries_[e].seg_hi);
-      }
+      crack::SortingPosition sorted(xp, xp - P_.u[p], crack::kSortingHair * G_.h);
+      if (nsub >= 0)
+        for (int e = 0; e < nsub; ++e) sorted.consider(cracks_[sub[e].crack], sub[e].lo, sub[e].hi);
+      else
+        for (int32_t e = cell_head_[cell]; e >= 0; e = entries_[e].next)
+          sorted.consider(cracks_[entries_[e].crack], entries_[e].seg_lo, entries_[e].seg_hi);
+      const V xc = sorted.at;
       int j = 0;
       s.for_each_weight([&](int64_t, double w) {
         const std::size_t q = k * N + j;
