@@ -24,6 +24,7 @@
 
 #include "libmpm/core/parallel.hpp"
 #include "libmpm/crack/crossing3d.hpp"
+#include "libmpm/crack/front_along_term.hpp"
 #include "libmpm/crack/front_parameters.hpp"
 #include "libmpm/mpm/crack_front_fit.hpp"
 #include "libmpm/mpm/crack_front_sums.hpp"
@@ -92,6 +93,8 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   std::vector<crack::FrontRecord> out(jobs.size());
   std::vector<uint8_t> done(jobs.size(), 0);
   std::vector<std::string> failure(jobs.size());
+  std::vector<V> e3_of(jobs.size(), V::Zero());  // each node's e3, and its material's mu and nu
+  std::vector<double> mu_of(jobs.size(), 0.0), nu_of(jobs.size(), 0.0);
 
   // Two passes over the front nodes: the first only lists the grid nodes each one reads (need);
   // then eq. 36's sums at all of them, once (a front node's neighbours, half a cell away, read
@@ -438,9 +441,11 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     // first order in the front's curvature kappa (e1 turning towards e3 at the rate kappa), in the
     // frame that turns with the front, sigma_i3 u_i,k = q^_k + kappa x3 sigma_i1 u_i,k. The second
     // part gives kappa int_A sigma_i1 u_i,k dA, an area integral in the contour's plane. The first,
-    // the change of q^_k along the front, is left out: it vanishes for modes I and II, and a
-    // derivative along the front (across one slab's particles, or between the nodes' int_A q^_k)
-    // reads the particle lattice rather than the field (docs/validation.md).
+    // the change of q^_k along the front, is taken for k = 1 after every node is done, from the
+    // near-tip fields' int_A q^_1 dA ~ K_II K_III at the nodes (front_along_term.hpp), not from the
+    // particles: a derivative along the front across one slab's particles, or between the nodes'
+    // int_A q^_k, reads the particle lattice rather than the field (docs/validation.md). For J2
+    // (k = 2) it is left out.
     if (ts.out_of_plane_term) {
       const double kappa = front_curvature(c.fronts[job.front], c.points, job.node);
       double q1 = 0.0, q2 = 0.0;
@@ -468,6 +473,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       throw std::runtime_error("crack '" + c.name + "': K from J needs an isotropic elastic material at its fronts");
     const auto k = crack::stress_intensity3(rec.J1, rec.cod_I, rec.cod_II, rec.cod_III, mu, nu);
     rec.KI = k.KI, rec.KII = k.KII, rec.KIII = k.KIII;
+    e3_of[j] = f.e3, mu_of[j] = mu, nu_of[j] = nu;
     done[j] = 1;
     } catch (const std::exception& e) {
       failure[j] = e.what();
@@ -476,6 +482,34 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   }
   for (const auto& e : failure)
     if (!e.empty()) throw std::runtime_error(e);
+  // The out-of-plane term's along-front part, from the K of each front's nodes (front_along_term.hpp).
+  if (ts.out_of_plane_term) {
+    const double L = crack::along_front_length(ts, h);
+    for (std::size_t a = 0; a < jobs.size();) {
+      std::size_t b = a;  // jobs a .. b - 1: one front's nodes, in node order
+      while (b < jobs.size() && jobs[b].crack == jobs[a].crack && jobs[b].front == jobs[a].front) ++b;
+      std::vector<crack::AlongFrontNode> nodes;
+      std::vector<std::size_t> at;
+      for (std::size_t j = a; j < b; ++j) {
+        if (!done[j]) continue;
+        const crack::FrontRecord& r = out[j];
+        nodes.push_back({r.x, e3_of[j], r.s, r.J1, r.cod_I, r.cod_II, r.cod_III, mu_of[j], nu_of[j], r.flag == 0});
+        at.push_back(j);
+      }
+      const auto& c = m.cracks[jobs[a].crack];
+      const auto& front = c.fronts[jobs[a].front];
+      const auto s = crack::front_arc_lengths(c, jobs[a].front);
+      const double length =
+          s.empty() ? 0.0 : s.back() + (c.points[front.nodes.back()] - c.points[front.nodes.front()]).norm();
+      const auto res = crack::subtract_along_front_term(nodes, front.closed, length, L, ts.radius * h);
+      for (std::size_t i = 0; i < at.size(); ++i) {
+        if (!res[i].applied) continue;
+        crack::FrontRecord& r = out[at[i]];
+        r.J1 = res[i].J1, r.KI = res[i].KI, r.KII = res[i].KII, r.KIII = res[i].KIII;
+      }
+      a = b;
+    }
+  }
   std::vector<crack::FrontRecord> kept;
   for (std::size_t j = 0; j < jobs.size(); ++j)
     if (done[j]) kept.push_back(out[j]);
