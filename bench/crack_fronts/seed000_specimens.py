@@ -41,14 +41,14 @@ s = json.loads((root / "data/scenes" / files[args.case]).read_text())
 if args.resolution:
     s["resolution"] = args.resolution
 h = s["resolution"]
-# A grid of whole cells at this resolution: each axis grown about its centre to a whole number of cells
-# each way (the scene's own resolution leaves it as it is).
+# A grid of whole cells at this resolution: each axis grown outwards to whole cells counted from 0, so that
+# the planes through 0 (the scenes' symmetry planes and crack centres) stay node planes (a scene whose grid
+# is already whole at this resolution is left as it is).
 g = s["grid"]
 for d in range(3):
-    c, half = 0.5 * (g["min"][d] + g["max"][d]), 0.5 * (g["max"][d] - g["min"][d])
-    if abs(2 * half / h - round(2 * half / h)) > 1e-9:
-        half = math.ceil(half / h - 1e-9) * h
-        g["min"][d], g["max"][d] = c - half, c + half
+    if abs((g["max"][d] - g["min"][d]) / h - round((g["max"][d] - g["min"][d]) / h)) > 1e-9:
+        g["min"][d] = -math.ceil(-g["min"][d] / h - 1e-9) * h
+        g["max"][d] = math.ceil(g["max"][d] / h - 1e-9) * h
 defaults = {"rod": (400, 0.05), "cylinder": (500, 0.04), "bar": (600, 0.02)}
 s["time"]["end"] = args.end or defaults[args.case][0]
 s.setdefault("units", {})["inverse_time"] = "1/us"
