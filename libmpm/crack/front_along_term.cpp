@@ -10,9 +10,10 @@ namespace cleave::crack {
 
 double along_front_length(const TipSettings& s, double cell) {
   const double r = s.radius * cell;
-  // A square's area integral of f(theta) / rho: int f(theta) rho(theta) dtheta with rho = r / max(|cos|,
-  // |sin|); the cos theta and cos 2 theta parts of q cancel over its four quarters, the constant part
-  // gives 8 ln(1 + sqrt 2) r against the circle's 2 pi r.
+  // Over the near-tip fields q = g(theta) / (distance from the front), so int_A q dA = int g(theta) R(theta)
+  // dtheta, R the distance to the contour: r on the circle, r / max(|cos theta|, |sin theta|) on the
+  // square, where the cos theta and cos 2 theta parts of g cancel over the four quarters and the
+  // constant part gives 8 ln(1 + sqrt 2) r against the circle's 2 pi r.
   if (s.contour == TipSettings::Contour::Rectangle) return 4.0 / M_PI * std::log(1.0 + std::sqrt(2.0)) * r;
   return r;
 }
