@@ -6,22 +6,18 @@
 #include <vector>
 
 #include "libmpm/crack/front_along_term.hpp"
+#include "williams_fields.hpp"
 
 using namespace cleave;
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
-// Williams' near-tip fields of modes I, II (plane strain) and III in a front's frame: x1 ahead, x2
-// the crack's normal, x3 along the front, the front on the x3 axis, the crack along -x1.
+// The near-tip fields of modes I, II (plane strain) and III in a front's frame (williams_fields.hpp),
+// x3 along the front: displacements, and the stresses sigma_i3 the term needs.
 struct NearTipField {
   double KI, KII, KIII, mu, nu;
-  Vec<3> u(double x1, double x2) const {
-    const double r = std::hypot(x1, x2), t = std::atan2(x2, x1), k = 3 - 4 * nu;
-    const double c = std::cos(t / 2), s = std::sin(t / 2), f = std::sqrt(r / (2 * kPi));
-    return {f / (2 * mu) * (KI * c * (k - 1 + 2 * s * s) + KII * s * (k + 1 + 2 * c * c)),
-            f / (2 * mu) * (KI * s * (k + 1 - 2 * c * c) - KII * c * (k - 1 - 2 * s * s)), 2 * KIII / mu * f * s};
-  }
+  Vec<3> u(double x1, double x2) const { return test::williams_displacement(KI, KII, KIII, mu, nu, x1, x2); }
   // sigma_13, sigma_23, sigma_33 (plane strain: sigma_33 = nu (sigma_11 + sigma_22)).
   Vec<3> sigma3(double x1, double x2) const {
     const double r = std::hypot(x1, x2), t = std::atan2(x2, x1), g = 1 / std::sqrt(2 * kPi * r);

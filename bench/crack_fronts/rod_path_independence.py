@@ -8,7 +8,9 @@ Usage: bench/crack_fronts/rod_path_independence.py [--resolution MM] [--radii MM
           [--threads N] [--out DIR] [--cleave build/bin/cleave]
 Six runs; at 3 mm cells (480 000 particles) about 22 s each at 2 threads.
 """
-import argparse, csv, json, pathlib, subprocess
+import argparse, json, pathlib
+
+from fronts_run import run_scene
 
 root = pathlib.Path(__file__).resolve().parents[2]
 ap = argparse.ArgumentParser()
@@ -31,14 +33,10 @@ def run(eq, r):
     s["crack_tips"] = {"radius": r / args.resolution, "volume_term": eq == 33, "out_of_plane_term": not args.no_oop,
                        "reference": base["crack_tips"]["reference"]}
     s["output"] = {"tip_interval": 5, "interval": 100, "precision": "float32", "fields": ["displacement"]}
-    d = out / f"eq{eq}_r{r:g}mm"
-    d.mkdir(parents=True, exist_ok=True)
-    (d / "scene.json").write_text(json.dumps(s))
-    cmd = [args.cleave, "run", str(d / "scene.json"), "--out", str(d / "run"), "--quiet", "--threads", args.threads]
-    subprocess.run(cmd, check=True)
+    rows, _, _ = run_scene(args.cleave, s, out / f"eq{eq}_r{r:g}mm", args.threads)
     # Per output time: J1 and K_I at the front node nearest A.
     at = {}
-    for row in csv.DictReader(open(d / "run" / "crack_fronts.csv")):
+    for row in rows:
         x, y, z = (float(row[k]) * 1e3 for k in ("x_m", "y_m", "z_m"))
         t = round(float(row["time_s"]) * 1e6)
         dist = (x * x + (y - 20) ** 2 + z * z) ** 0.5
