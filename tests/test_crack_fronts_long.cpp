@@ -74,11 +74,11 @@ TEST(CrackFrontK, RodWithAnEmbeddedEllipticalCrackDampedToStaticGivesKIAtTheDeep
 // static) at the seed's 2 mm cells and 4 mm contour, t = 600 us: K_I, K_II, K_III at the seed's
 // points A (theta = 0 from the direction of shear, and 180) and C (+-90 degrees) within 5 % of K0 of
 // Tada's static solution at the node (validation.md §4); nodes lie there. Point B (45 degrees) has
-// no node: the eight nodes 3 degrees either side of its four positions are printed, not asserted:
-// they read K_I -4.6 ... -5.2 % of K0, at the criterion's limit, and K_I elsewhere along the front
-// down to -6 % (docs/validation.md). Without the out-of-plane term's along-front part
-// (front_along_term.hpp) A read K_I -8.2 %.
-TEST(CrackFrontK, InclinedPennyCrackInABarDampedGivesKIKIIKIIIAtPointsAAndCWithinFivePercentOfK0) {
+// no node: the eight nodes 3 degrees either side of its four positions are asserted. They read K_I
+// -4.44 and -4.98 % of K0, at the criterion's limit (before the opening probes' fix of session 32,
+// -4.6 ... -5.2 %); K_I elsewhere along the front goes down to -5.9 % (docs/validation.md). Without
+// the out-of-plane term's along-front part (front_along_term.hpp) A read K_I -8.2 %.
+TEST(CrackFrontK, InclinedPennyCrackInABarDampedGivesKIKIIKIIIWithinFivePercentOfK0AtAAndCAndBesideB) {
   json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/bar_inclined_penny.json");
   s.erase("output");
   Model<3> m = build_model<3>(s);
@@ -105,12 +105,12 @@ TEST(CrackFrontK, InclinedPennyCrackInABarDampedGivesKIKIIKIIIAtPointsAAndCWithi
                 std::fabs(k.KI) / K0, std::fabs(k.KII) / K0, std::fabs(k.KIII) / K0, e[0], e[1], e[2],
                 off_axis < 0.5 ? (std::fabs(std::remainder(t, 180.0)) < 0.5 ? " (A)" : " (C)") : (off_b < 4 ? " (beside B)" : ""),
                 r.flag);
-    if (off_axis >= 0.5) continue;
+    if (off_axis >= 0.5 && off_b >= 4) continue;
     ++asserted;
     EXPECT_EQ(r.flag, 0);
     for (const double err : e) EXPECT_LT(std::fabs(err), 5.0) << "node " << r.node << " at theta " << t;
   }
-  EXPECT_EQ(asserted, 4);  // A at 0 and 180 degrees, C at +-90
+  EXPECT_EQ(asserted, 12);  // A at 0 and 180 degrees, C at +-90, two nodes beside each of B's four places
 }
 
 }  // namespace

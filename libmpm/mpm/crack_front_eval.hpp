@@ -19,6 +19,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -136,10 +137,10 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     rec.x = f.x;
     rec.s = crack::front_arc_lengths(c, job.front)[job.node];
     if (!c.fronts[job.front].flags.empty()) rec.flag = c.fronts[job.front].flags[job.node];
-    // g(cell, plane, distance) for each non-empty cell of the bins within distance d of the node, in
-    // cell order: plane, the distance of its centre from the contour's plane; distance, the node's
-    // from the cell.
-    const auto for_cells_near = [&](double d, auto&& g) {
+    // g(cell, plane, distance) for each non-empty cell of the bins within distance d of the node and
+    // with plane <= plane_max, in cell order: plane, the distance of its centre from the contour's
+    // plane; distance, the node's from the cell.
+    const auto for_cells_near = [&](double d, double plane_max, auto&& g) {
       const int r = static_cast<int>(std::ceil(d * inv_h));
       const auto [ci, cj, ck] = detail::CellBins::cell_of(G, f.x);
       for (int64_t a = ci - r; a <= ci + r; ++a)
@@ -148,27 +149,22 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
             const int64_t cell = bins.index(a, b, e);
             if (cell < 0 || bins.begin[cell] == bins.begin[cell + 1]) continue;
             const V corner = G.origin + h * V(a, b, e);
+            const double plane = std::fabs((corner + V::Constant(0.5 * h) - f.x).dot(f.e3));
+            if (plane > plane_max) continue;
             const double distance = (f.x - f.x.cwiseMax(corner).cwiseMin(corner + V::Constant(h))).norm();
             if (distance > d) continue;
-            g(cell, std::fabs((corner + V::Constant(0.5 * h) - f.x).dot(f.e3)), distance);
+            g(cell, plane, distance);
           }
     };
 
     if (pass == 0) {
     State& S = state[j];
-    // The node's own crack's triangles within reach (their boxes meet the box about the node), for the
-    // crack points nearest to the contour's start and the opening probes.
+    // Among the node's own crack's triangles ids: the squared distance of the one nearest to x (the
+    // first in the list of those as near), its point nearest to x into q and its normal (if any).
     const auto &tlo = tris.box_lo(c.id), &thi = tris.box_hi(c.id);
-    std::vector<int32_t> local;
-    for (std::size_t t = 0; t < c.simplices.size(); ++t)
-      if (((thi[t] - f.x).array() >= -reach).all() && ((tlo[t] - f.x).array() <= reach).all())
-        local.push_back(static_cast<int32_t>(t));
-
-    // The crack's surface point nearest to x (among the node's local triangles) and the normal of
-    // its triangle.
-    const auto nearest_on_crack = [&](const V& x, V& q, V& normal) {
+    const auto nearest_among = [&](const auto& ids, const V& x, V& q, V& normal) {
       double best = INFINITY;
-      for (const int32_t id : local) {
+      for (const int32_t id : ids) {
         // No point of a triangle whose box is farther than the best so far can be nearer.
         if ((x - x.cwiseMax(tlo[id]).cwiseMin(thi[id])).squaredNorm() >= best) continue;
         const auto& T = c.simplices[id];
@@ -192,8 +188,17 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
         const double d = (p - x).squaredNorm();
         if (d < best) best = d, q = p, normal = nrm;
       }
-      return best < INFINITY;
+      return best;
     };
+    // The crack's surface point nearest to x among its triangles within reach of the node (their
+    // boxes meet the box about it), and the normal of its triangle. x is a copy: a caller passes q as
+    // x (as a reference, q's first update moved x, and the search went on about the first triangle's
+    // point).
+    std::vector<int32_t> local;
+    for (std::size_t t = 0; t < c.simplices.size(); ++t)
+      if (((thi[t] - f.x).array() >= -reach).all() && ((tlo[t] - f.x).array() <= reach).all())
+        local.push_back(static_cast<int32_t>(t));
+    const auto nearest_on_crack = [&](const V x, V& q, V& normal) { return nearest_among(local, x, q, normal) < INFINITY; };
 
     // The contour starts where the circle meets the crack (seed 000 step 1).
     double theta0 = -M_PI;
@@ -248,8 +253,10 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     // plane is near.
     const double slab_cells = mirrors.empty() ? 2.0 * h : INFINITY;
     double last_volume = -1.0, l = 0.0;  // (cbrt of the last particle's volume: most particles share it)
-    for_cells_near(std::max(slab_particles ? bound : 0.0, fit_reach), [&](int64_t cell, double plane, double distance) {
-      if (distance <= fit_reach && plane <= 2.37 * h) S.fit_cells.push_back(cell);
+    const double fit_plane = 2.37 * h;
+    const double plane_max = slab_particles ? std::max(fit_plane, slab_cells) : fit_plane;
+    for_cells_near(std::max(slab_particles ? bound : 0.0, fit_reach), plane_max, [&](int64_t cell, double plane, double distance) {
+      if (distance <= fit_reach && plane <= fit_plane) S.fit_cells.push_back(cell);
       if (!slab_particles || distance > bound || plane > slab_cells) return;
       for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
         const int32_t p = bins.particle[q];
@@ -281,30 +288,11 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     const auto& contour = S.contour;
     const auto& inside = S.inside;
     const V &up = S.up, &down = S.down;
-    // need_index(n): n's position in `need`, or -1, through a dense table over the box of nodes
-    // within `reach` of the front node (every node this evaluation touches lies in it).
-    const int box_r = static_cast<int>(std::ceil(reach * inv_h)) + 2, box_n = 2 * box_r + 1;
-    std::array<int64_t, 3> box0;
-    for (int d = 0; d < 3; ++d) box0[d] = static_cast<int64_t>(std::floor((f.x[d] - G.origin[d]) * inv_h)) - box_r;
-    std::vector<int32_t> slot(static_cast<std::size_t>(box_n) * box_n * box_n, -1);
-    const auto box_of = [&](int64_t n) -> int64_t {
-      const auto ijk = node_ijk(n);
-      int64_t b = 0;
-      for (int d = 0; d < 3; ++d) {
-        const int64_t i = ijk[d] - box0[d];
-        if (i < 0 || i >= box_n) return -1;
-        b = b * box_n + i;
-      }
-      return b;
-    };
-    for (std::size_t i = 0; i < need.size(); ++i) {
-      const int64_t b = box_of(need[i]);
-      if (b < 0) throw std::logic_error("crack-front evaluation: a needed node lies outside its box");
-      slot[b] = static_cast<int32_t>(i);
-    }
+    // need_index(n): n's position in `need` (sorted), or -1. (A few hundred lookups per front node:
+    // a dense table over the box of nodes about it cost more to clear than they do.)
     const auto need_index = [&](int64_t n) {
-      const int64_t b = box_of(n);
-      return b < 0 ? -1 : slot[b];
+      const auto it = std::lower_bound(need.begin(), need.end(), n);
+      return it != need.end() && *it == n ? static_cast<int>(it - need.begin()) : -1;
     };
 
     // The rigid motion of the material about the node (FitCells), and the particle nearest the node
@@ -314,7 +302,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     int32_t nearest = motion.nearest;
     if (nearest < 0) {  // (no particle in those cells: the nearest within reach)
       double nearest_d = INFINITY;
-      for_cells_near(reach, [&](int64_t cell, double, double) {
+      for_cells_near(reach, INFINITY, [&](int64_t cell, double, double) {
         for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
           const int32_t p = bins.particle[q];
           if (const double d = (P.x[p] - f.x).norm(); d < nearest_d) nearest_d = d, nearest = p;
@@ -328,9 +316,13 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
 
     // Eq. 36 at the needed nodes: per node, its fields' sums (at most a few), from the shared raw
     // sums with this node's rigid motion taken out: grad u - [theta]x, v - omega x (x - x_f).
-    std::vector<std::vector<Sums>> sums(need.size());
+    // (Node i's fields: sums[first[i]] .. sums[first[i + 1] - 1].)
+    std::vector<Sums> sums;
+    sums.reserve(need.size() + 16);
+    std::vector<int32_t> first(need.size() + 1, 0);
     const Mat<3> W_theta = detail::displacement_gradient(Sym<3>::Zero(), theta);
-    for (std::size_t i = 0; i < need.size(); ++i)
+    for (std::size_t i = 0; i < need.size(); ++i) {
+      first[i] = static_cast<int32_t>(sums.size());
       for (const detail::RawSums& r : shared.at(need[i])) {
         Sums t;
         t.key = r.key, t.m = r.m, t.energy = r.energy, t.stress = r.stress, t.u = r.u;
@@ -342,13 +334,16 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
         const V rxv = r.rho_xv - f.x.cross(r.rho_v);
         const Mat<3> rr = r.rho_xx - r.rho_x * f.x.transpose() - f.x * r.rho_x.transpose() + r.rho * f.x * f.x.transpose();
         t.rho_vv = r.rho_vv - 2.0 * omega.dot(rxv) + omega.squaredNorm() * rr.trace() - omega.dot(rr * omega);
-        sums[i].push_back(t);
+        sums.push_back(t);
       }
+    }
+    first[need.size()] = static_cast<int32_t>(sums.size());
+    const auto fields_at = [&](int i) { return std::span<const Sums>(sums.data() + first[i], sums.data() + first[i + 1]); };
     if (nearest < 0) continue;  // no material at this front node (done stays 0: no row)
     const auto field = [&](int64_t n, uint32_t key) -> const Sums* {
       const int i = need_index(n);
       if (i < 0) return nullptr;
-      for (const Sums& s : sums[i])
+      for (const Sums& s : fields_at(i))
         if (s.key == key && s.m > 0.0) return &s;
       return nullptr;
     };
@@ -378,7 +373,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
         if (i < 0 || w == 0.0) return;
         double mn = 0.0;
         V pn = V::Zero();
-        for (const Sums& s : sums[i]) mn += s.m, pn += s.v;
+        for (const Sums& s : fields_at(i)) mn += s.m, pn += s.v;
         if (!(mn > 0.0)) return;
         v_tip += w * pn / mn, wsum += w;
       });
@@ -397,9 +392,11 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       std::array<int64_t, 3> cell;
       for (int d = 0; d < 3; ++d) cell[d] = static_cast<int64_t>(std::floor((x[d] - G.origin[d]) * inv_h));
       tris.gather_cell(cell, cand);  // (x's lines to its cell's corners)
+      tris.mask_lines<2>(x, cell, cand);
       const bool in_grid = for_cell_nodes(x, [&](int64_t n, double w) {
         if (w == 0.0) return;
-        const Sums* s = field(n, tris.key(x, node_pos(n), cand));
+        const auto ijk = node_ijk(n);
+        const Sums* s = field(n, tris.key(x, node_pos(n), cand, ijk[0] - cell[0], ijk[1] - cell[1], ijk[2] - cell[2]));
         if (!s) return;
         const double k = w / s->m;
         const double kinetic = 0.5 * (s->rho_vv - 2.0 * v_tip.dot(s->rho_v) + s->rho * v_tip.squaredNorm());
@@ -426,10 +423,13 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       if (!ts.volume_term) break;  // (the list serves the out-of-plane term too)
       St st;
       st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
-      tris.gather_stencil<St::K>(node_ijk(st.base), node_pos(st.base), P.x[p], cand);
+      const auto base = node_ijk(st.base);
+      tris.gather_stencil<St::K>(base, node_pos(st.base), P.x[p], cand);
+      tris.mask_lines<St::K>(P.x[p], base, cand);
       Mat<3> gv = Mat<3>::Zero();
       st.for_each([&](int64_t n, double, const V& g) {
-        const Sums* s = field(n, tris.key(P.x[p], node_pos(n), cand));
+        const auto ijk = node_ijk(n);
+        const Sums* s = field(n, tris.key(P.x[p], node_pos(n), cand, ijk[0] - base[0], ijk[1] - base[1], ijk[2] - base[2]));
         if (s) gv += (s->v / s->m) * g.transpose();
       });
       J += P.mass[p] * weight * (grad_u(p).transpose() * accel(p) - gv.transpose() * (v_rel(p) - v_tip));

@@ -32,8 +32,10 @@ struct NodeIndexing {
   }
   Vec<3> position(int64_t n) const {
     const auto c = ijk(n);
-    return Vec<3>(origin.x() + h * c[0], origin.y() + h * c[1], origin.z() + h * c[2]);
+    return Vec<3>(coordinate(0, c[0]), coordinate(1, c[1]), coordinate(2, c[2]));
   }
+  // The coordinate along axis d of the nodes with index i along it.
+  double coordinate(int d, int64_t i) const { return origin[d] + h * static_cast<double>(i); }
   Vec<3> origin;
   double h;
   std::array<int64_t, 3> stride;
@@ -237,6 +239,10 @@ class TriangleBins {
     std::vector<int32_t> ids;    // triangle ids
     std::vector<int8_t> side;    // the point's volume_sign per candidate (kUnknown: not computed yet)
     std::vector<int32_t> line_ids, line_at;  // scratch: one line's triangles and their candidate index
+    // mask_lines's: bit k of axis[d][a] set when candidate k's box meets, along axis d, the span of
+    // the point and the a-th node coordinate of its block (valid while `masked`).
+    uint64_t axis[3][3] = {};
+    bool masked = false;
   };
   static constexpr int8_t kUnknown = 2;
   void gather(const Vec<3>& lo, const Vec<3>& hi, Candidates& c) const {
@@ -257,6 +263,7 @@ class TriangleBins {
       c.begin.push_back(static_cast<int32_t>(c.ids.size()));
     }
     c.side.assign(c.ids.size(), kUnknown);
+    c.masked = false;
   }
   // The candidates of a point in the closed cell (i, j, k) for its lines to the cell's corners: the
   // cell's own entries (a triangle whose box meets the closed cell is entered in it: the slack).
@@ -278,6 +285,7 @@ class TriangleBins {
       c.begin.push_back(static_cast<int32_t>(c.ids.size()));
     }
     c.side.assign(c.ids.size(), kUnknown);
+    c.masked = false;
   }
   // The candidates of a particle at x for its lines to the nodes of its stencil of K x K x K nodes,
   // base its first node and first that node's position: every such line lies in the box of the first
@@ -291,18 +299,52 @@ class TriangleBins {
       gather(first.cwiseMin(x), last.cwiseMax(x), c);
     }
   }
+  // For the lines from x to the nodes of the block of K x K x K grid nodes from node `first` (i, j, k),
+  // node (a, b, e) of it at (i + a, j + b, k + e): each candidate's box tested once per axis and node
+  // coordinate (as the stepper's classify_block3), so that key(x, xn, c, a, b, e) finds a line's
+  // triangles by one AND. Most lines near a front meet none of their cell's candidates: their box
+  // tests, line by line, were most of the keys' cost.
+  template <int K>
+  void mask_lines(const Vec<3>& x, const std::array<int64_t, 3>& first, Candidates& c) const {
+    static_assert(K <= 3);
+    c.masked = c.ids.size() <= 64;
+    if (!c.masked) return;
+    const NodeIndexing ix(m_.grid);
+    double nc[3][K];  // (NodeIndexing::position's coordinates: the nodes of the callers' lines)
+    for (int d = 0; d < 3; ++d)
+      for (int a = 0; a < K; ++a) nc[d][a] = ix.coordinate(d, first[d] + a);
+    for (auto& row : c.axis)
+      for (uint64_t& w : row) w = 0;
+    for (const auto& o : m_.cracks)
+      for (int32_t k = c.begin[o.id]; k < c.begin[o.id + 1]; ++k) {
+        const Vec<3>&tlo = lo_[o.id][c.ids[k]], &thi = hi_[o.id][c.ids[k]];
+        for (int d = 0; d < 3; ++d)
+          for (int a = 0; a < K; ++a)
+            c.axis[d][a] |= static_cast<uint64_t>(thi[d] >= std::min(x[d], nc[d][a]) && tlo[d] <= std::max(x[d], nc[d][a]))
+                            << k;
+      }
+  }
   // The field key of the line x -> xn (crack_fields' key: one code per crossed crack, in crack order)
   // from the candidates gathered over a box that holds the line, x the point they were gathered for:
   // the triangles whose boxes meet the line's box, in triangle order, as the stepper tests them.
-  uint32_t key(const Vec<3>& x, const Vec<3>& xn, Candidates& c) const {
+  // (a, b, e): xn's place in the block of mask_lines, when the candidates are masked.
+  uint32_t key(const Vec<3>& x, const Vec<3>& xn, Candidates& c, int a = -1, int b = -1, int e = -1) const {
     const Vec<3> lo = x.cwiseMin(xn), hi = x.cwiseMax(xn);
-    crack::FieldKeyBuilder b;
+    const bool masked = c.masked && a >= 0;
+    const uint64_t line = masked ? c.axis[0][a] & c.axis[1][b] & c.axis[2][e] : 0;
+    if (masked && line == 0) return 0;
+    crack::FieldKeyBuilder key;
     for (const auto& o : m_.cracks) {
       c.line_ids.clear(), c.line_at.clear();
-      for (int32_t k = c.begin[o.id]; k < c.begin[o.id + 1]; ++k) {
-        const int32_t t = c.ids[k];
-        if ((hi_[o.id][t].array() >= lo.array()).all() && (lo_[o.id][t].array() <= hi.array()).all())
-          c.line_ids.push_back(t), c.line_at.push_back(k);
+      if (masked) {
+        for (int32_t k = c.begin[o.id]; k < c.begin[o.id + 1]; ++k)
+          if (line >> k & 1) c.line_ids.push_back(c.ids[k]), c.line_at.push_back(k);
+      } else {
+        for (int32_t k = c.begin[o.id]; k < c.begin[o.id + 1]; ++k) {
+          const int32_t t = c.ids[k];
+          if ((hi_[o.id][t].array() >= lo.array()).all() && (lo_[o.id][t].array() <= hi.array()).all())
+            c.line_ids.push_back(t), c.line_at.push_back(k);
+        }
       }
       if (c.line_ids.empty()) continue;
       const auto point_side = [&](std::size_t k) {
@@ -317,9 +359,9 @@ class TriangleBins {
           crack::triangle_list_crossing_with(o.points.data(), o.simplices.data(), c.line_ids.data(), c.line_ids.size(),
                                              x, xn, point_side, nullptr,
                                              o.front_cut.dropper(o.points.data(), o.simplices.data()));
-      if (side != crack::Side::None && !b.add(o.id, side)) return crack::kFieldKeyOverflow;
+      if (side != crack::Side::None && !key.add(o.id, side)) return crack::kFieldKeyOverflow;
     }
-    return b.key();
+    return key.key();
   }
   // The bounding boxes of crack c's triangles.
   const std::vector<Vec<3>>& box_lo(int c) const { return lo_[c]; }
@@ -462,8 +504,12 @@ class NodeSums {
             r.weight[k] = w, r.key[k] = 0;
             const std::array<int64_t, 3> ijk{r.base[0] + k / (K * K), r.base[1] + k / K % K, r.base[2] + k % K};
             if (w != 0.0 && needed(ijk, n)) {
-              if (!gathered) tris.gather_stencil<K>(r.base, node_x(st.base), P.x[p], cand), gathered = true;
-              r.key[k] = tris.key(P.x[p], node_x(n), cand);
+              if (!gathered) {
+                tris.gather_stencil<K>(r.base, node_x(st.base), P.x[p], cand);
+                tris.mask_lines<K>(P.x[p], r.base, cand);
+                gathered = true;
+              }
+              r.key[k] = tris.key(P.x[p], node_x(n), cand, k / (K * K), k / K % K, k % K);
             }
             ++k;
           });
