@@ -193,12 +193,27 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     // The crack's surface point nearest to x among its triangles within reach of the node (their
     // boxes meet the box about it), and the normal of its triangle. x is a copy: a caller passes q as
     // x (as a reference, q's first update moved x, and the search went on about the first triangle's
-    // point).
-    std::vector<int32_t> local;
-    for (std::size_t t = 0; t < c.simplices.size(); ++t)
-      if (((thi[t] - f.x).array() >= -reach).all() && ((tlo[t] - f.x).array() <= reach).all())
-        local.push_back(static_cast<int32_t>(t));
-    const auto nearest_on_crack = [&](const V x, V& q, V& normal) { return nearest_among(local, x, q, normal) < INFINITY; };
+    // point). The nearest of the triangles binned in x's cell bounds the distance d; every triangle
+    // as near has its box within d of x, so those binned about x within d give the same answer as all
+    // those within reach (the first of the nearest in triangle order), while d leaves them in reach.
+    const auto own = [&](const detail::TriangleBins::Candidates& k) {
+      return std::span<const int32_t>(k.ids.data() + k.begin[c.id], k.ids.data() + k.begin[c.id + 1]);
+    };
+    const auto nearest_on_crack = [&](const V x, V& q, V& normal) {
+      tris.gather_cell(detail::CellBins::cell_of(G, x), cand);
+      V q0, n0;
+      const double bound = std::sqrt(nearest_among(own(cand), x, q0, n0)) * (1.0 + 1e-9) + 1e-12 * h;
+      const V lo = x - V::Constant(bound), hi = x + V::Constant(bound);
+      if (bound <= reach - cod_distance - h && tris.covers(lo, hi)) {
+        tris.gather(lo, hi, cand);
+        return nearest_among(own(cand), x, q, normal) < INFINITY;
+      }
+      std::vector<int32_t> local;
+      for (std::size_t t = 0; t < c.simplices.size(); ++t)
+        if (((thi[t] - f.x).array() >= -reach).all() && ((tlo[t] - f.x).array() <= reach).all())
+          local.push_back(static_cast<int32_t>(t));
+      return nearest_among(local, x, q, normal) < INFINITY;
+    };
 
     // The contour starts where the circle meets the crack (seed 000 step 1).
     double theta0 = -M_PI;

@@ -265,6 +265,12 @@ class TriangleBins {
     c.side.assign(c.ids.size(), kUnknown);
     c.masked = false;
   }
+  // Whether the cells that the box [lo, hi] meets lie in the binned box (gather is exact for it).
+  bool covers(const Vec<3>& lo, const Vec<3>& hi) const {
+    for (int d = 0; d < 3; ++d)
+      if (unclamped(lo, d, 0.0) < 0 || unclamped(hi, d, 0.0) >= cells_[d]) return false;
+    return true;
+  }
   // The candidates of a point in the closed cell (i, j, k) for its lines to the cell's corners: the
   // cell's own entries (a triangle whose box meets the closed cell is entered in it: the slack).
   void gather_cell(const std::array<int64_t, 3>& ijk, Candidates& c) const {
