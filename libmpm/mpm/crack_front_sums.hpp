@@ -313,6 +313,7 @@ class TriangleBins {
   template <int K>
   void mask_lines(const Vec<3>& x, const std::array<int64_t, 3>& first, Candidates& c) const {
     static_assert(K <= 3);
+    std::fill(c.side.begin(), c.side.end(), kUnknown);  // (the candidates may be another point's)
     c.masked = c.ids.size() <= 64;
     if (!c.masked) return;
     const NodeIndexing ix(m_.grid);
@@ -334,11 +335,20 @@ class TriangleBins {
   // from the candidates gathered over a box that holds the line, x the point they were gathered for:
   // the triangles whose boxes meet the line's box, in triangle order, as the stepper tests them.
   // (a, b, e): xn's place in the block of mask_lines, when the candidates are masked.
+  // (The masks' answer inline: most masked lines meet no candidate, and the call to the crossing
+  // tests was a good part of their cost.)
   uint32_t key(const Vec<3>& x, const Vec<3>& xn, Candidates& c, int a = -1, int b = -1, int e = -1) const {
+    return a >= 0 && masked_out(c, a, b, e) ? 0 : key_tested(x, xn, c, a, b, e);
+  }
+  // Whether key(x, xn, c, a, b, e) is 0 by the masks alone (xn not needed).
+  static bool masked_out(const Candidates& c, int a, int b, int e) {
+    return c.masked && (c.axis[0][a] & c.axis[1][b] & c.axis[2][e]) == 0;
+  }
+  // key() by the crossing tests.
+  uint32_t key_tested(const Vec<3>& x, const Vec<3>& xn, Candidates& c, int a, int b, int e) const {
     const Vec<3> lo = x.cwiseMin(xn), hi = x.cwiseMax(xn);
     const bool masked = c.masked && a >= 0;
     const uint64_t line = masked ? c.axis[0][a] & c.axis[1][b] & c.axis[2][e] : 0;
-    if (masked && line == 0) return 0;
     crack::FieldKeyBuilder key;
     for (const auto& o : m_.cracks) {
       c.line_ids.clear(), c.line_at.clear();
@@ -421,6 +431,64 @@ inline Mat<3> full_tensor(const Sym<3>& s) {
   return t;
 }
 
+// A particle's share of RawSums per unit of its shape-function weight N, laid out flat so that a
+// node's sums take it as one run of fused multiply-adds (acc += N c): mass-weighted entries (m_p
+// times 1, energy density, stress, displacement gradient, u, v, x), then density-weighted ones
+// (m_p^2 / V_p0 times 1, v, |v|^2, x, x cross v, x x^T). Computed once per particle, where each of
+// the up to 27 nodes it reaches would otherwise rebuild the tensors from the particle arrays.
+struct ParticleShare {
+  enum : int {
+    kM = 0, kEnergy = 1, kStress = 2, kGradU = 8, kU = 17, kV = 20, kX = 23,  // (stress, x x^T: Sym order)
+    kRho = 26, kRhoV = 27, kRhoVV = 30, kRhoX = 31, kRhoXV = 34, kRhoXX = 37, kUsed = 43, kSize = 48
+  };
+  alignas(64) double c[kSize];
+
+  void set(double m, double energy, const Sym<3>& stress, const Mat<3>& grad_u, const Vec<3>& u, const Vec<3>& v,
+           const Vec<3>& x, double rho) {
+    c[kM] = m, c[kEnergy] = m * energy;
+    for (int i = 0; i < 6; ++i) c[kStress + i] = m * stress[i];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) c[kGradU + 3 * i + j] = m * grad_u(i, j);
+    const Vec<3> xv = x.cross(v);
+    const double xx[6] = {x[0] * x[0], x[1] * x[1], x[2] * x[2], x[0] * x[1], x[1] * x[2], x[0] * x[2]};
+    for (int d = 0; d < 3; ++d) {
+      c[kU + d] = m * u[d], c[kV + d] = m * v[d], c[kX + d] = m * x[d];
+      c[kRhoV + d] = rho * v[d], c[kRhoX + d] = rho * x[d], c[kRhoXV + d] = rho * xv[d];
+    }
+    c[kRho] = rho, c[kRhoVV] = rho * v.squaredNorm();
+    for (int i = 0; i < 6; ++i) c[kRhoXX + i] = rho * xx[i];
+    for (int i = kUsed; i < kSize; ++i) c[i] = 0.0;
+  }
+};
+
+// One field's running sum of ParticleShare at a node, and the RawSums it stands for.
+struct ShareSum {
+  uint32_t key = 0;
+  alignas(64) double c[ParticleShare::kSize] = {};
+
+  void add(double w, const ParticleShare& s) {
+#pragma omp simd
+    for (int i = 0; i < ParticleShare::kSize; ++i) c[i] += w * s.c[i];
+  }
+  RawSums raw() const {
+    using S = ParticleShare;
+    const auto vec = [&](int k) { return Vec<3>(c[k], c[k + 1], c[k + 2]); };
+    const auto sym = [&](int k) {
+      Sym<3> t;
+      for (int i = 0; i < 6; ++i) t[i] = c[k + i];
+      return full_tensor(t);
+    };
+    RawSums r;
+    r.key = key, r.m = c[S::kM], r.energy = c[S::kEnergy], r.rho = c[S::kRho], r.rho_vv = c[S::kRhoVV];
+    r.mv = vec(S::kV), r.mx = vec(S::kX), r.u = vec(S::kU);
+    r.rho_v = vec(S::kRhoV), r.rho_x = vec(S::kRhoX), r.rho_xv = vec(S::kRhoXV);
+    r.stress = sym(S::kStress), r.rho_xx = sym(S::kRhoXX);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) r.grad_u(i, j) = c[S::kGradU + 3 * i + j];
+    return r;
+  }
+};
+
 // RawSums at a set of grid nodes, per field: each node gathers from the particles of the cells
 // around it, in cell and particle order (the same sums for any thread count). Each particle's
 // stencil, energy density and field keys (of its lines to the needed nodes) are found once, before
@@ -466,9 +534,9 @@ class NodeSums {
       std::array<int64_t, 3> base;  // the stencil's first node (i, j, k)
       double weight[N];
       uint32_t key[N];
-      double energy;
     };
     std::vector<Record> rec(static_cast<std::size_t>(records));
+    std::vector<ParticleShare> share(static_cast<std::size_t>(records));
     // needed(n): whether node n is one of nodes_, from a mark per node of the bins' box (+1 per axis).
     std::array<int64_t, 3> mn;
     for (int d = 0; d < 3; ++d) mn[d] = bins.n[d] + 1;
@@ -495,6 +563,7 @@ class NodeSums {
 #pragma omp parallel
     {
       TriangleBins::Candidates cand;
+      std::array<int64_t, 3> cand_base{-1, -1, -1};  // (K = 2: the cell whose candidates cand holds)
 #pragma omp for schedule(dynamic, 4)
       for (std::size_t ci = 0; ci < cells.size(); ++ci) {
         const int64_t c = cells[ci];
@@ -511,56 +580,63 @@ class NodeSums {
             const std::array<int64_t, 3> ijk{r.base[0] + k / (K * K), r.base[1] + k / K % K, r.base[2] + k % K};
             if (w != 0.0 && needed(ijk, n)) {
               if (!gathered) {
-                tris.gather_stencil<K>(r.base, node_x(st.base), P.x[p], cand);
+                // (Linear shapes: the particles of a cell share its candidates.)
+                if (K != 2 || cand_base != r.base) tris.gather_stencil<K>(r.base, node_x(st.base), P.x[p], cand);
+                if (K == 2) cand_base = r.base;
                 tris.mask_lines<K>(P.x[p], r.base, cand);
                 gathered = true;
               }
-              r.key[k] = tris.key(P.x[p], node_x(n), cand, k / (K * K), k / K % K, k % K);
+              const int a = k / (K * K), b = k / K % K, e = k % K;
+              if (!TriangleBins::masked_out(cand, a, b, e)) r.key[k] = tris.key_tested(P.x[p], node_x(n), cand, a, b, e);
             }
             ++k;
           });
-          r.energy = m.materials[P.material[p]]->strain_energy_density(P.stress[p], P.strain[p]);
+          const double energy = m.materials[P.material[p]]->strain_energy_density(P.stress[p], P.strain[p]);
+          const double mass = P.mass[p];
+          share[static_cast<std::size_t>(&r - rec.data())].set(
+              mass, energy, P.stress[p],
+              displacement_gradient(P.strain[p], rotations ? P.rotation3[p] : Vec<3>::Zero()), P.u[p], P.v[p], P.x[p],
+              mass * mass / P.volume0[p]);
         }
       }
     }
 
-#pragma omp parallel for schedule(dynamic, 16) if (nodes_.size() > 64)
-    for (std::size_t u = 0; u < nodes_.size(); ++u) {
-      const auto ijk = ijk_of(nodes_[u]);
-      auto& list = sums_[u];
-      for (int a = kLo; a <= kHi; ++a)
-        for (int b = kLo; b <= kHi; ++b)
-          for (int e = kLo; e <= kHi; ++e) {
-            const int64_t c = bins.index(ijk[0] + a, ijk[1] + b, ijk[2] + e);
-            if (c < 0) continue;
-            for (int64_t q = bins.begin[c]; q < bins.begin[c + 1]; ++q) {
-              const int32_t p = bins.particle[q];
-              const Record& r = rec[static_cast<std::size_t>(record_of[c] + (q - bins.begin[c]))];
-              int slot = 0;
-              bool in = true;
-              for (int d = 0; d < 3; ++d) {
-                const int64_t o = ijk[d] - r.base[d];
-                in = in && o >= 0 && o < K;
-                slot = slot * K + static_cast<int>(o);
+#pragma omp parallel if (nodes_.size() > 64)
+    {
+      std::vector<ShareSum> list;
+#pragma omp for schedule(dynamic, 16)
+      for (std::size_t u = 0; u < nodes_.size(); ++u) {
+        const auto ijk = ijk_of(nodes_[u]);
+        list.clear();
+        for (int a = kLo; a <= kHi; ++a)
+          for (int b = kLo; b <= kHi; ++b)
+            for (int e = kLo; e <= kHi; ++e) {
+              const int64_t c = bins.index(ijk[0] + a, ijk[1] + b, ijk[2] + e);
+              if (c < 0) continue;
+              for (int64_t q = bins.begin[c]; q < bins.begin[c + 1]; ++q) {
+                const auto at = static_cast<std::size_t>(record_of[c] + (q - bins.begin[c]));
+                const Record& r = rec[at];
+                int slot = 0;
+                bool in = true;
+                for (int d = 0; d < 3; ++d) {
+                  const int64_t o = ijk[d] - r.base[d];
+                  in = in && o >= 0 && o < K;
+                  slot = slot * K + static_cast<int>(o);
+                }
+                if (!in) continue;
+                const double w = r.weight[slot];
+                if (w == 0.0) continue;
+                const uint32_t key = r.key[slot];
+                if (key == crack::kFieldKeyOverflow) continue;
+                auto it = std::find_if(list.begin(), list.end(), [&](const ShareSum& s) { return s.key == key; });
+                if (it == list.end()) it = list.insert(list.end(), ShareSum{}), it->key = key;
+                it->add(w, share[at]);
               }
-              if (!in) continue;
-              const double w = r.weight[slot];
-              if (w == 0.0) continue;
-              const uint32_t key = r.key[slot];
-              if (key == crack::kFieldKeyOverflow) continue;
-              auto it = std::find_if(list.begin(), list.end(), [&](const RawSums& s) { return s.key == key; });
-              if (it == list.end()) it = list.insert(list.end(), RawSums{}), it->key = key;
-              const double mw = P.mass[p] * w, rw = mw * P.mass[p] / P.volume0[p];
-              const Vec<3>&x = P.x[p], &v = P.v[p];
-              it->m += mw;
-              it->energy += mw * r.energy;
-              it->stress += mw * full_tensor(P.stress[p]);
-              it->grad_u += mw * displacement_gradient(P.strain[p], rotations ? P.rotation3[p] : Vec<3>::Zero());
-              it->u += mw * P.u[p], it->mv += mw * v, it->mx += mw * x;
-              it->rho += rw, it->rho_v += rw * v, it->rho_vv += rw * v.squaredNorm();
-              it->rho_x += rw * x, it->rho_xv += rw * x.cross(v), it->rho_xx += rw * x * x.transpose();
             }
-          }
+        auto& out = sums_[u];
+        out.clear();
+        for (const ShareSum& s : list) out.push_back(s.raw());
+      }
     }
   }
   const std::vector<RawSums>& at(int64_t n) const {
