@@ -569,7 +569,8 @@ class NodeSums {
         const int64_t c = cells[ci];
         for (int64_t q = bins.begin[c]; q < bins.begin[c + 1]; ++q) {
           const int32_t p = bins.particle[q];
-          Record& r = rec[static_cast<std::size_t>(record_of[c] + (q - bins.begin[c]))];
+          const auto at = static_cast<std::size_t>(record_of[c] + (q - bins.begin[c]));
+          Record& r = rec[at];
           St st;
           st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
           r.base = ijk_of(st.base);
@@ -593,7 +594,7 @@ class NodeSums {
           });
           const double energy = m.materials[P.material[p]]->strain_energy_density(P.stress[p], P.strain[p]);
           const double mass = P.mass[p];
-          share[static_cast<std::size_t>(&r - rec.data())].set(
+          share[at].set(
               mass, energy, P.stress[p],
               displacement_gradient(P.strain[p], rotations ? P.rotation3[p] : Vec<3>::Zero()), P.u[p], P.v[p], P.x[p],
               mass * mass / P.volume0[p]);
