@@ -28,6 +28,7 @@
 #include "libmpm/crack/front_along_term.hpp"
 #include "libmpm/crack/front_parameters.hpp"
 #include "libmpm/mpm/crack_front_fit.hpp"
+#include "libmpm/mpm/crack_front_kept.hpp"
 #include "libmpm/mpm/crack_front_sums.hpp"
 #include "libmpm/mpm/crack_tip_eval.hpp"  // kCodCells
 #include "libmpm/mpm/model.hpp"
@@ -37,7 +38,8 @@ namespace cleave {
 
 // accel(p): the acceleration of particle p in the last step (from the grid, with its own fields).
 // near (optional): the particles near the fronts kept by the caller between evaluations, with its
-// bound on how far particles have moved (FrontParticles); without it every particle is tested.
+// bound on how far particles have moved, and the buffers the evaluation reuses (FrontParticles);
+// without it every particle is tested and the buffers are made afresh.
 template <class SF, class Accel>
 std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const crack::TipSettings& ts, Accel&& accel,
                                                       detail::FrontParticles* near = nullptr) {
@@ -111,8 +113,10 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     std::vector<int64_t> fit_cells;  // the cells that can hold the rigid-motion fit's particles
   };
   std::vector<State> state(jobs.size());
-  detail::NodeSums shared;
-  detail::FitCells fits;
+  detail::NodeSums local_sums;
+  detail::FitCells local_fits;
+  detail::NodeSums& shared = near ? near->sums : local_sums;
+  detail::FitCells& fits = near ? near->fits : local_fits;
   // The rigid motion's fit (as in 2D): the particles within a cell and a half of the contour's plane
   // and within `fit` of the front, in the cells within fit_reach of the node whose centres lie within
   // a cell and a half of the plane plus the cell's half-diagonal.

@@ -21,34 +21,42 @@ class FitCells {
   static constexpr int kLanes = 8;
 
   // Copies the particles of the bins' cells `cells` (any order, repeats allowed); fit reads only these.
+  // An object kept from one evaluation to the next (FrontParticles::fits) reuses its arrays: each
+  // entry that fit reads is written here, so they are grown, never cleared.
   void pack(const Particles<3>& P, const CellBins& bins, const std::vector<int64_t>& listed) {
-    std::vector<uint8_t> mark(bins.begin.size(), 0);
-    for (const int64_t c : listed) mark[c] = 1;
-    std::vector<int64_t> cells;  // in cell order
-    for (std::size_t c = 0; c < mark.size(); ++c)
-      if (mark[c]) cells.push_back(static_cast<int64_t>(c));
+    mark_.assign(bins.begin.size(), 0);
+    for (const int64_t c : listed) mark_[c] = 1;
+    cells_.clear();  // in cell order
+    for (std::size_t c = 0; c < mark_.size(); ++c)
+      if (mark_[c]) cells_.push_back(static_cast<int64_t>(c));
     start_.assign(bins.begin.size(), 0), end_.assign(bins.begin.size(), 0);
-    std::vector<int64_t> at(cells.size() + 1, 0);
-    for (std::size_t k = 0; k < cells.size(); ++k) {
-      const int64_t count = bins.begin[cells[k] + 1] - bins.begin[cells[k]];
-      at[k + 1] = at[k] + (count + kLanes - 1) / kLanes * kLanes;
-      start_[cells[k]] = at[k], end_[cells[k]] = at[k + 1];
+    at_.assign(cells_.size() + 1, 0);
+    for (std::size_t k = 0; k < cells_.size(); ++k) {
+      const int64_t count = bins.begin[cells_[k] + 1] - bins.begin[cells_[k]];
+      at_[k + 1] = at_[k] + (count + kLanes - 1) / kLanes * kLanes;
+      start_[cells_[k]] = at_[k], end_[cells_[k]] = at_[k + 1];
     }
-    const std::size_t total = static_cast<std::size_t>(at.back());
-    for (auto* a : {&x_, &y_, &z_, &m_, &vx_, &vy_, &vz_, &tx_, &ty_, &tz_}) a->assign(total, 0.0);
-    id_.assign(total, -1);
+    const std::size_t total = static_cast<std::size_t>(at_.back());
+    for (auto* a : {&x_, &y_, &z_, &m_, &vx_, &vy_, &vz_, &tx_, &ty_, &tz_})
+      if (a->size() < total) a->resize(total);
+    if (id_.size() < total) id_.resize(total);
     const bool rotations = !P.rotation3.empty();
 #pragma omp parallel for schedule(static) if (total > 4096)
-    for (std::size_t k = 0; k < cells.size(); ++k) {
-      std::size_t e = static_cast<std::size_t>(at[k]);
-      for (int64_t q = bins.begin[cells[k]]; q < bins.begin[cells[k] + 1]; ++q, ++e) {
+    for (std::size_t k = 0; k < cells_.size(); ++k) {
+      std::size_t e = static_cast<std::size_t>(at_[k]);
+      for (int64_t q = bins.begin[cells_[k]]; q < bins.begin[cells_[k] + 1]; ++q, ++e) {
         const int32_t p = bins.particle[q];
         id_[e] = p;
         x_[e] = P.x[p].x(), y_[e] = P.x[p].y(), z_[e] = P.x[p].z(), m_[e] = P.mass[p];
         vx_[e] = P.v[p].x(), vy_[e] = P.v[p].y(), vz_[e] = P.v[p].z();
         if (rotations) tx_[e] = P.rotation3[p].x(), ty_[e] = P.rotation3[p].y(), tz_[e] = P.rotation3[p].z();
+        else tx_[e] = ty_[e] = tz_[e] = 0.0;
       }
-      // (padding: m = 0, which the fit may take in but adds nothing, and id -1)
+      // Padding: m = 0, which the fit may take in but adds nothing (every value finite), and id -1.
+      for (; e < static_cast<std::size_t>(at_[k + 1]); ++e) {
+        id_[e] = -1;
+        x_[e] = y_[e] = z_[e] = m_[e] = vx_[e] = vy_[e] = vz_[e] = tx_[e] = ty_[e] = tz_[e] = 0.0;
+      }
     }
   }
 
@@ -125,6 +133,8 @@ class FitCells {
 
  private:
   std::vector<int64_t> start_, end_;  // per bins cell: its run of entries (empty when not packed)
+  std::vector<uint8_t> mark_;          // (pack's buffers: the cells listed, in cell order, and their runs)
+  std::vector<int64_t> cells_, at_;
   std::vector<double> x_, y_, z_, m_, vx_, vy_, vz_, tx_, ty_, tz_;
   std::vector<int32_t> id_;  // the particle (-1: padding)
 };

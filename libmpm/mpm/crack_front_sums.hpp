@@ -129,69 +129,6 @@ struct CellBins {
   }
 };
 
-// The particles near the fronts and their bins, kept from one evaluation to the next by the stepper
-// that owns this (bins_for). A list of the particles of a box of cells two cells wider on each side
-// than the box an evaluation needs, made in one pass over all particles, holds every particle of a
-// later evaluation's box as long as that box, grown by how far a particle may have moved since
-// (travel, a bound the stepper keeps), lies in the listed one: an evaluation then tests the list
-// instead of all particles, and keeps the last bins when no particle of the list changed cell.
-struct FrontParticles {
-  double travel = 0.0;  // set by the owner before each evaluation: its bound on any particle's path
-
-  // The particles of x in the grid's cells that meet [box_lo, box_hi], binned: the same bins as
-  // CellBins::build's.
-  const CellBins& bins_for(const GridGeometry<3>& G, const std::vector<Vec<3>>& x, const Vec<3>& box_lo,
-                           const Vec<3>& box_hi) {
-    CellBins box;
-    box.set_box(G, box_lo, box_hi);
-    std::array<int64_t, 3> cells;
-    for (int d = 0; d < 3; ++d) cells[d] = std::max(1, G.nodes[d] - 1);
-    bool holds = particles_ == x.size() && travel >= listed_at_;
-    if (holds) {
-      // A particle outside the listed box then has since moved by at most `moved` cells (+ rounding).
-      const int64_t moved = static_cast<int64_t>(std::ceil((travel - listed_at_) / G.h + 1e-9));
-      for (int d = 0; d < 3; ++d)
-        holds = holds && (box.lo[d] - moved >= lo_[d] || lo_[d] == 0) &&
-                (box.lo[d] + box.n[d] - 1 + moved <= hi_[d] || hi_[d] == cells[d] - 1);
-    }
-    if (!holds) {  // list afresh
-      std::array<int64_t, 3> span;
-      for (int d = 0; d < 3; ++d) {
-        lo_[d] = std::max<int64_t>(0, box.lo[d] - 2), hi_[d] = std::min(cells[d] - 1, box.lo[d] + box.n[d] + 1);
-        span[d] = hi_[d] - lo_[d] + 1;
-      }
-      std::vector<int64_t> in(x.size());
-      CellBins::cells_in_box(G, x, lo_, span, nullptr, x.size(), in.data());
-      list_.clear();
-      for (std::size_t p = 0; p < x.size(); ++p)
-        if (in[p] >= 0) list_.push_back(static_cast<int32_t>(p));
-      listed_at_ = travel, particles_ = x.size();
-      cell_.clear();
-    }
-    // No listed particle has changed cell while none can have moved as far as the nearest was from
-    // a face of its cell when the cells were taken.
-    if (holds && box.lo == bins_.lo && box.n == bins_.n && travel < same_cells_until_) return bins_;
-    next_.resize(list_.size());
-    const double slack = CellBins::cells_in_box(G, x, box.lo, box.n, list_.data(), list_.size(), next_.data());
-    same_cells_until_ = travel + (slack - 1e-9) * G.h;  // (less the rounding of the cell coordinates)
-    if (box.lo != bins_.lo || box.n != bins_.n || next_ != cell_) {
-      box.place(list_.data(), next_.data(), list_.size());
-      bins_ = std::move(box);
-      cell_.swap(next_);
-    }
-    return bins_;
-  }
-
- private:
-  std::vector<int32_t> list_;           // in index order
-  std::array<int64_t, 3> lo_{}, hi_{};  // the listed box (cells, inclusive)
-  double listed_at_ = 0.0;              // travel when listed
-  std::size_t particles_ = 0;           // the model's particle count then (0: nothing listed)
-  std::vector<int64_t> cell_, next_;    // per listed particle: its cell in bins_'s box, or -1 (next_: scratch)
-  double same_cells_until_ = -1.0;      // travel until which no listed particle can change cell
-  CellBins bins_;
-};
-
 // The triangles of every crack binned by grid cell over a box of cells (cells lo .. lo + n - 1), each
 // in the cells its box meets (by a hair more, so that rounding cannot drop one): a triangle whose box
 // meets a line's box is in one of the cells the line's box meets, so the field key of a line inside
@@ -492,7 +429,9 @@ struct ShareSum {
 // RawSums at a set of grid nodes, per field: each node gathers from the particles of the cells
 // around it, in cell and particle order (the same sums for any thread count). Each particle's
 // stencil, energy density and field keys (of its lines to the needed nodes) are found once, before
-// the nodes gather: a particle reaches up to N of them.
+// the nodes gather: a particle reaches up to N of them. An object kept from one build to the next
+// (FrontParticles::sums) reuses its buffers: made afresh, their few megabytes were zeroed and
+// faulted in by one thread on every evaluation.
 class NodeSums {
  public:
   template <class SF>
@@ -504,7 +443,7 @@ class NodeSums {
     for (const auto& v : need_of) nodes_.insert(nodes_.end(), v.begin(), v.end());
     std::sort(nodes_.begin(), nodes_.end());
     nodes_.erase(std::unique(nodes_.begin(), nodes_.end()), nodes_.end());
-    sums_.assign(nodes_.size(), {});
+    if (sums_.size() < nodes_.size()) sums_.resize(nodes_.size());  // (entries past nodes_.size() unused)
     if (nodes_.empty()) return;
     const auto& P = m.particles;
     const auto& G = m.grid;
@@ -517,8 +456,10 @@ class NodeSums {
     const auto node_x = [&](int64_t n) { return indexing.position(n); };
 
     // The cells whose particles reach a needed node, and the particles' records at consecutive places.
-    std::vector<int64_t> record_of(bins.begin.size(), -1);  // per cell of the bins: its first record
-    std::vector<int64_t> cells;
+    std::vector<int64_t>& record_of = record_of_;  // per cell of the bins: its first record
+    record_of.assign(bins.begin.size(), -1);
+    std::vector<int64_t>& cells = cells_;
+    cells.clear();
     for (const int64_t n : nodes_) {
       const auto ijk = ijk_of(n);
       for (int a = kLo; a <= kHi; ++a)
@@ -530,13 +471,17 @@ class NodeSums {
     std::sort(cells.begin(), cells.end());
     int64_t records = 0;
     for (const int64_t c : cells) record_of[c] = records, records += bins.begin[c + 1] - bins.begin[c];
-    struct Record {
-      std::array<int64_t, 3> base;  // the stencil's first node (i, j, k)
-      double weight[N];
-      uint32_t key[N];
+    // Record r: its stencil's first node (i, j, k) base[r] and, per stencil node k, the weight
+    // weight[r N + k] and the field key key[r N + k]. (Grown, never shrunk: every entry used is written.)
+    const auto grow = [](auto& v, std::size_t size) {
+      if (v.size() < size) v.resize(size);
     };
-    std::vector<Record> rec(static_cast<std::size_t>(records));
-    std::vector<ParticleShare> share(static_cast<std::size_t>(records));
+    grow(base_, static_cast<std::size_t>(records)), grow(share_, static_cast<std::size_t>(records));
+    grow(weight_, static_cast<std::size_t>(records * N)), grow(key_, static_cast<std::size_t>(records * N));
+    std::array<int64_t, 3>* const base = base_.data();
+    double* const weight = weight_.data();
+    uint32_t* const keys = key_.data();
+    ParticleShare* const share = share_.data();
     // needed(n): whether node n is one of nodes_, from a mark per node of the bins' box (+1 per axis).
     std::array<int64_t, 3> mn;
     for (int d = 0; d < 3; ++d) mn[d] = bins.n[d] + 1;
@@ -549,7 +494,8 @@ class NodeSums {
       }
       return b;
     };
-    std::vector<uint8_t> mark(static_cast<std::size_t>(mn[0] * mn[1] * mn[2]), 0);
+    std::vector<uint8_t>& mark = mark_;
+    mark.assign(static_cast<std::size_t>(mn[0] * mn[1] * mn[2]), 0);
     bool all_marked = true;
     for (const int64_t n : nodes_) {
       const int64_t b = mark_of(ijk_of(n));
@@ -570,25 +516,26 @@ class NodeSums {
         for (int64_t q = bins.begin[c]; q < bins.begin[c + 1]; ++q) {
           const int32_t p = bins.particle[q];
           const auto at = static_cast<std::size_t>(record_of[c] + (q - bins.begin[c]));
-          Record& r = rec[at];
+          double* const w_of = weight + at * N;
+          uint32_t* const key_of = keys + at * N;
           St st;
           st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
-          r.base = ijk_of(st.base);
+          const std::array<int64_t, 3> b0 = base[at] = ijk_of(st.base);
           bool gathered = false;
           int k = 0;
           st.for_each_weight([&](int64_t n, double w) {
-            r.weight[k] = w, r.key[k] = 0;
-            const std::array<int64_t, 3> ijk{r.base[0] + k / (K * K), r.base[1] + k / K % K, r.base[2] + k % K};
+            w_of[k] = w, key_of[k] = 0;
+            const std::array<int64_t, 3> ijk{b0[0] + k / (K * K), b0[1] + k / K % K, b0[2] + k % K};
             if (w != 0.0 && needed(ijk, n)) {
               if (!gathered) {
                 // (Linear shapes: the particles of a cell share its candidates.)
-                if (K != 2 || cand_base != r.base) tris.gather_stencil<K>(r.base, node_x(st.base), P.x[p], cand);
-                if (K == 2) cand_base = r.base;
-                tris.mask_lines<K>(P.x[p], r.base, cand);
+                if (K != 2 || cand_base != b0) tris.gather_stencil<K>(b0, node_x(st.base), P.x[p], cand);
+                if (K == 2) cand_base = b0;
+                tris.mask_lines<K>(P.x[p], b0, cand);
                 gathered = true;
               }
               const int a = k / (K * K), b = k / K % K, e = k % K;
-              if (!TriangleBins::masked_out(cand, a, b, e)) r.key[k] = tris.key_tested(P.x[p], node_x(n), cand, a, b, e);
+              if (!TriangleBins::masked_out(cand, a, b, e)) key_of[k] = tris.key_tested(P.x[p], node_x(n), cand, a, b, e);
             }
             ++k;
           });
@@ -616,18 +563,17 @@ class NodeSums {
               if (c < 0) continue;
               for (int64_t q = bins.begin[c]; q < bins.begin[c + 1]; ++q) {
                 const auto at = static_cast<std::size_t>(record_of[c] + (q - bins.begin[c]));
-                const Record& r = rec[at];
                 int slot = 0;
                 bool in = true;
                 for (int d = 0; d < 3; ++d) {
-                  const int64_t o = ijk[d] - r.base[d];
+                  const int64_t o = ijk[d] - base[at][d];
                   in = in && o >= 0 && o < K;
                   slot = slot * K + static_cast<int>(o);
                 }
                 if (!in) continue;
-                const double w = r.weight[slot];
+                const double w = weight[at * N + slot];
                 if (w == 0.0) continue;
-                const uint32_t key = r.key[slot];
+                const uint32_t key = keys[at * N + slot];
                 if (key == crack::kFieldKeyOverflow) continue;
                 auto it = std::find_if(list.begin(), list.end(), [&](const ShareSum& s) { return s.key == key; });
                 if (it == list.end()) it = list.insert(list.end(), ShareSum{}), it->key = key;
@@ -649,6 +595,14 @@ class NodeSums {
   std::vector<int64_t> nodes_;
   std::vector<std::vector<RawSums>> sums_;
   std::vector<RawSums> empty_;
+  // build's buffers (kept for the next build): the records' cells, each cell's first record, the
+  // needed nodes' marks, the records.
+  std::vector<int64_t> cells_, record_of_;
+  std::vector<uint8_t> mark_;
+  std::vector<std::array<int64_t, 3>> base_;
+  std::vector<double> weight_;
+  std::vector<uint32_t> key_;
+  std::vector<ParticleShare> share_;
 };
 
 }  // namespace detail
