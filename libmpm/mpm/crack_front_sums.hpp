@@ -426,24 +426,27 @@ struct ShareSum {
   }
 };
 
-// RawSums at a set of grid nodes, per field: each node gathers from the particles of the cells
-// around it, in cell and particle order (the same sums for any thread count). Each particle's
-// stencil, energy density and field keys (of its lines to the needed nodes) are found once, before
-// the nodes gather: a particle reaches up to N of them. An object kept from one build to the next
-// (FrontParticles::sums) reuses its buffers: made afresh, their few megabytes were zeroed and
-// faulted in by one thread on every evaluation.
+// RawSums at a set of grid nodes, per field. Each particle that reaches a needed node has its stencil,
+// energy density, field keys (of its lines to the needed nodes) and share of the sums found once, and
+// adds its share to those nodes at once (a scatter: the nodes' running sums, a few hundred kilobytes,
+// stay in cache, where a gather re-read each particle's share, megabytes, from each node). The cells
+// are taken in slabs across one axis, each slab whole by one thread and in cell and particle order;
+// slabs of one colour touch disjoint nodes and run in parallel, the two colours one after the other:
+// the same sums for any thread count. An object kept from one build to the next
+// (FrontParticles::sums) reuses its buffers.
 class NodeSums {
  public:
   template <class SF>
   void build(const Model<3>& m, const CellBins& bins, const TriangleBins& tris,
              const std::vector<std::vector<int64_t>>& need_of) {
     using St = Stencil<3, SF>;
-    constexpr int K = St::K, N = St::N;
+    constexpr int K = St::K;
     nodes_.clear();
     for (const auto& v : need_of) nodes_.insert(nodes_.end(), v.begin(), v.end());
     std::sort(nodes_.begin(), nodes_.end());
     nodes_.erase(std::unique(nodes_.begin(), nodes_.end()), nodes_.end());
     if (sums_.size() < nodes_.size()) sums_.resize(nodes_.size());  // (entries past nodes_.size() unused)
+    if (acc_.size() < nodes_.size()) acc_.resize(nodes_.size());
     if (nodes_.empty()) return;
     const auto& P = m.particles;
     const auto& G = m.grid;
@@ -455,37 +458,11 @@ class NodeSums {
     const auto ijk_of = [&](int64_t n) { return indexing.ijk(n); };
     const auto node_x = [&](int64_t n) { return indexing.position(n); };
 
-    // The cells whose particles reach a needed node, and the particles' records at consecutive places.
-    std::vector<int64_t>& record_of = record_of_;  // per cell of the bins: its first record
-    record_of.assign(bins.begin.size(), -1);
-    std::vector<int64_t>& cells = cells_;
-    cells.clear();
-    for (const int64_t n : nodes_) {
-      const auto ijk = ijk_of(n);
-      for (int a = kLo; a <= kHi; ++a)
-        for (int b = kLo; b <= kHi; ++b)
-          for (int e = kLo; e <= kHi; ++e)
-            if (const int64_t c = bins.index(ijk[0] + a, ijk[1] + b, ijk[2] + e); c >= 0 && record_of[c] < 0)
-              record_of[c] = 0, cells.push_back(c);
-    }
-    std::sort(cells.begin(), cells.end());
-    int64_t records = 0;
-    for (const int64_t c : cells) record_of[c] = records, records += bins.begin[c + 1] - bins.begin[c];
-    // Record r: its stencil's first node (i, j, k) base[r] and, per stencil node k, the weight
-    // weight[r N + k] and the field key key[r N + k]. (Grown, never shrunk: every entry used is written.)
-    const auto grow = [](auto& v, std::size_t size) {
-      if (v.size() < size) v.resize(size);
-    };
-    grow(base_, static_cast<std::size_t>(records)), grow(share_, static_cast<std::size_t>(records));
-    grow(weight_, static_cast<std::size_t>(records * N)), grow(key_, static_cast<std::size_t>(records * N));
-    std::array<int64_t, 3>* const base = base_.data();
-    double* const weight = weight_.data();
-    uint32_t* const keys = key_.data();
-    ParticleShare* const share = share_.data();
-    // needed(n): whether node n is one of nodes_, from a mark per node of the bins' box (+1 per axis).
+    // slot_of(ijk, n): node n's place in nodes_, or -1 (not needed), from a table over the bins' box
+    // (+1 node per axis; a binary search for a node outside it).
     std::array<int64_t, 3> mn;
     for (int d = 0; d < 3; ++d) mn[d] = bins.n[d] + 1;
-    const auto mark_of = [&](const std::array<int64_t, 3>& ijk) -> int64_t {
+    const auto box_of = [&](const std::array<int64_t, 3>& ijk) -> int64_t {
       int64_t b = 0;
       for (int d = 0; d < 3; ++d) {
         const int64_t i = ijk[d] - bins.lo[d];
@@ -494,95 +471,109 @@ class NodeSums {
       }
       return b;
     };
-    std::vector<uint8_t>& mark = mark_;
-    mark.assign(static_cast<std::size_t>(mn[0] * mn[1] * mn[2]), 0);
-    bool all_marked = true;
-    for (const int64_t n : nodes_) {
-      const int64_t b = mark_of(ijk_of(n));
-      if (b < 0) all_marked = false;
-      else mark[b] = 1;
+    slot_.assign(static_cast<std::size_t>(mn[0] * mn[1] * mn[2]), -1);
+    bool all_in_box = true;
+    for (std::size_t u = 0; u < nodes_.size(); ++u) {
+      const int64_t b = box_of(ijk_of(nodes_[u]));
+      if (b < 0) all_in_box = false;
+      else slot_[b] = static_cast<int32_t>(u);
     }
-    const auto needed = [&](const std::array<int64_t, 3>& ijk, int64_t n) {
-      const int64_t b = mark_of(ijk);
-      return b >= 0 ? mark[b] != 0 : !all_marked && std::binary_search(nodes_.begin(), nodes_.end(), n);
+    const auto slot_of = [&](const std::array<int64_t, 3>& ijk, int64_t n) -> int64_t {
+      const int64_t b = box_of(ijk);
+      if (b >= 0) return slot_[b];
+      if (all_in_box) return -1;
+      const auto it = std::lower_bound(nodes_.begin(), nodes_.end(), n);
+      return it != nodes_.end() && *it == n ? it - nodes_.begin() : -1;
     };
+
+    // The cells whose particles reach a needed node (in cell order), in slabs one cell wide (linear:
+    // a cell's particles reach its own two node layers) or three wide (uGIMP: from the layer before
+    // to the second after) across axis 0: slabs two apart touch no node in common.
+    constexpr int64_t kSlab = K == 2 ? 1 : 3;
+    std::vector<int64_t>& cells = cells_;
+    cells.clear();
+    {
+      std::vector<uint8_t>& listed = listed_;
+      listed.assign(bins.begin.size(), 0);
+      for (const int64_t n : nodes_) {
+        const auto ijk = ijk_of(n);
+        for (int a = kLo; a <= kHi; ++a)
+          for (int b = kLo; b <= kHi; ++b)
+            for (int e = kLo; e <= kHi; ++e)
+              if (const int64_t c = bins.index(ijk[0] + a, ijk[1] + b, ijk[2] + e); c >= 0 && !listed[c])
+                listed[c] = 1, cells.push_back(c);
+      }
+    }
+    std::sort(cells.begin(), cells.end());
+    // Slab k holds cells[slab_begin_[k] .. slab_begin_[k + 1]) (cells are ordered by their axis-0 index first).
+    const int64_t per_layer = bins.n[1] * bins.n[2];
+    slab_begin_.clear();
+    int64_t last = -1;
+    for (std::size_t q = 0; q < cells.size(); ++q)
+      if (const int64_t slab = cells[q] / per_layer / kSlab; slab != last) slab_begin_.push_back(static_cast<int64_t>(q)), last = slab;
+    slab_begin_.push_back(static_cast<int64_t>(cells.size()));
+    const int64_t slabs = static_cast<int64_t>(slab_begin_.size()) - 1;
+    for (std::size_t u = 0; u < nodes_.size(); ++u) acc_[u].clear();
+
 #pragma omp parallel
     {
       TriangleBins::Candidates cand;
       std::array<int64_t, 3> cand_base{-1, -1, -1};  // (K = 2: the cell whose candidates cand holds)
-#pragma omp for schedule(dynamic, 4)
-      for (std::size_t ci = 0; ci < cells.size(); ++ci) {
-        const int64_t c = cells[ci];
-        for (int64_t q = bins.begin[c]; q < bins.begin[c + 1]; ++q) {
-          const int32_t p = bins.particle[q];
-          const auto at = static_cast<std::size_t>(record_of[c] + (q - bins.begin[c]));
-          double* const w_of = weight + at * N;
-          uint32_t* const key_of = keys + at * N;
-          St st;
-          st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
-          const std::array<int64_t, 3> b0 = base[at] = ijk_of(st.base);
-          bool gathered = false;
-          int k = 0;
-          st.for_each_weight([&](int64_t n, double w) {
-            w_of[k] = w, key_of[k] = 0;
-            const std::array<int64_t, 3> ijk{b0[0] + k / (K * K), b0[1] + k / K % K, b0[2] + k % K};
-            if (w != 0.0 && needed(ijk, n)) {
-              if (!gathered) {
-                // (Linear shapes: the particles of a cell share its candidates.)
-                if (K != 2 || cand_base != b0) tris.gather_stencil<K>(b0, node_x(st.base), P.x[p], cand);
-                if (K == 2) cand_base = b0;
-                tris.mask_lines<K>(P.x[p], b0, cand);
-                gathered = true;
-              }
-              const int a = k / (K * K), b = k / K % K, e = k % K;
-              if (!TriangleBins::masked_out(cand, a, b, e)) key_of[k] = tris.key_tested(P.x[p], node_x(n), cand, a, b, e);
+      ParticleShare share;
+      for (int colour = 0; colour < 2; ++colour) {
+#pragma omp for schedule(dynamic, 1)
+        for (int64_t k = 0; k < slabs; ++k) {
+          // (Slabs of the other colour: the slab's axis-0 index parity, not k's: slabs may be skipped.)
+          if (cells[slab_begin_[k]] / per_layer / kSlab % 2 != colour) continue;
+          for (int64_t q0 = slab_begin_[k]; q0 < slab_begin_[k + 1]; ++q0) {
+            const int64_t c = cells[q0];
+            for (int64_t q = bins.begin[c]; q < bins.begin[c + 1]; ++q) {
+              const int32_t p = bins.particle[q];
+              St st;
+              st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
+              const std::array<int64_t, 3> b0 = ijk_of(st.base);
+              bool gathered = false, shared = false;
+              int j = 0;
+              st.for_each_weight([&](int64_t n, double w) {
+                const std::array<int64_t, 3> ijk{b0[0] + j / (K * K), b0[1] + j / K % K, b0[2] + j % K};
+                const int64_t u = w != 0.0 ? slot_of(ijk, n) : -1;
+                if (u >= 0) {
+                  if (!gathered) {
+                    // (Linear shapes: the particles of a cell share its candidates.)
+                    if (K != 2 || cand_base != b0) tris.gather_stencil<K>(b0, node_x(st.base), P.x[p], cand);
+                    if (K == 2) cand_base = b0;
+                    tris.mask_lines<K>(P.x[p], b0, cand);
+                    gathered = true;
+                  }
+                  const int a = j / (K * K), b = j / K % K, e = j % K;
+                  const uint32_t key =
+                      TriangleBins::masked_out(cand, a, b, e) ? 0 : tris.key_tested(P.x[p], node_x(n), cand, a, b, e);
+                  if (key != crack::kFieldKeyOverflow) {
+                    if (!shared) {
+                      const double mass = P.mass[p];
+                      share.set(mass, m.materials[P.material[p]]->strain_energy_density(P.stress[p], P.strain[p]),
+                                P.stress[p],
+                                displacement_gradient(P.strain[p], rotations ? P.rotation3[p] : Vec<3>::Zero()),
+                                P.u[p], P.v[p], P.x[p], mass * mass / P.volume0[p]);
+                      shared = true;
+                    }
+                    std::vector<ShareSum>& list = acc_[static_cast<std::size_t>(u)];
+                    auto it = std::find_if(list.begin(), list.end(), [&](const ShareSum& s) { return s.key == key; });
+                    if (it == list.end()) it = list.insert(list.end(), ShareSum{}), it->key = key;
+                    it->add(w, share);
+                  }
+                }
+                ++j;
+              });
             }
-            ++k;
-          });
-          const double energy = m.materials[P.material[p]]->strain_energy_density(P.stress[p], P.strain[p]);
-          const double mass = P.mass[p];
-          share[at].set(
-              mass, energy, P.stress[p],
-              displacement_gradient(P.strain[p], rotations ? P.rotation3[p] : Vec<3>::Zero()), P.u[p], P.v[p], P.x[p],
-              mass * mass / P.volume0[p]);
+          }
         }
       }
-    }
-
-#pragma omp parallel if (nodes_.size() > 64)
-    {
-      std::vector<ShareSum> list;
-#pragma omp for schedule(dynamic, 16)
+#pragma omp for schedule(static)
       for (std::size_t u = 0; u < nodes_.size(); ++u) {
-        const auto ijk = ijk_of(nodes_[u]);
-        list.clear();
-        for (int a = kLo; a <= kHi; ++a)
-          for (int b = kLo; b <= kHi; ++b)
-            for (int e = kLo; e <= kHi; ++e) {
-              const int64_t c = bins.index(ijk[0] + a, ijk[1] + b, ijk[2] + e);
-              if (c < 0) continue;
-              for (int64_t q = bins.begin[c]; q < bins.begin[c + 1]; ++q) {
-                const auto at = static_cast<std::size_t>(record_of[c] + (q - bins.begin[c]));
-                int slot = 0;
-                bool in = true;
-                for (int d = 0; d < 3; ++d) {
-                  const int64_t o = ijk[d] - base[at][d];
-                  in = in && o >= 0 && o < K;
-                  slot = slot * K + static_cast<int>(o);
-                }
-                if (!in) continue;
-                const double w = weight[at * N + slot];
-                if (w == 0.0) continue;
-                const uint32_t key = keys[at * N + slot];
-                if (key == crack::kFieldKeyOverflow) continue;
-                auto it = std::find_if(list.begin(), list.end(), [&](const ShareSum& s) { return s.key == key; });
-                if (it == list.end()) it = list.insert(list.end(), ShareSum{}), it->key = key;
-                it->add(w, share[at]);
-              }
-            }
         auto& out = sums_[u];
         out.clear();
-        for (const ShareSum& s : list) out.push_back(s.raw());
+        for (const ShareSum& s : acc_[u]) out.push_back(s.raw());
       }
     }
   }
@@ -595,14 +586,12 @@ class NodeSums {
   std::vector<int64_t> nodes_;
   std::vector<std::vector<RawSums>> sums_;
   std::vector<RawSums> empty_;
-  // build's buffers (kept for the next build): the records' cells, each cell's first record, the
-  // needed nodes' marks, the records.
-  std::vector<int64_t> cells_, record_of_;
-  std::vector<uint8_t> mark_;
-  std::vector<std::array<int64_t, 3>> base_;
-  std::vector<double> weight_;
-  std::vector<uint32_t> key_;
-  std::vector<ParticleShare> share_;
+  // build's buffers (kept for the next build): per node its fields' running sums; the cells read, in
+  // cell order, and where each slab of them begins; which cells are listed; each node's slot in the box.
+  std::vector<std::vector<ShareSum>> acc_;
+  std::vector<int64_t> cells_, slab_begin_;
+  std::vector<uint8_t> listed_;
+  std::vector<int32_t> slot_;
 };
 
 }  // namespace detail
