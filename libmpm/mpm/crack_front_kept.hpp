@@ -12,16 +12,17 @@
 namespace cleave::detail {
 
 // The particles near the fronts and their bins, kept from one evaluation to the next by the stepper
-// that owns this (bins_for), with the evaluation's buffers (sums, fits). A list of the particles of a box of cells two cells wider on each side
-// than the box an evaluation needs, made in one pass over all particles, holds every particle of a
-// later evaluation's box as long as that box, grown by how far a particle may have moved since
-// (travel, a bound the stepper keeps), lies in the listed one: an evaluation then tests the list
-// instead of all particles, and keeps the last bins when no particle of the list changed cell.
+// that owns this (bins_for), with the evaluation's buffers (sums, fits). A list of the particles of a
+// box of cells two cells wider on each side than the box an evaluation needs, made in one pass over
+// all particles, holds every particle of a later evaluation's box as long as that box, grown by how
+// far a particle may have moved since (travel, a bound the stepper keeps), lies in the listed one: an
+// evaluation then tests the list instead of all particles, and keeps the last bins when no particle
+// of the list changed cell.
 struct FrontParticles {
   double travel = 0.0;  // set by the owner before each evaluation: its bound on any particle's path
   // The nodal sums and the rigid-motion fits of the last evaluation, whose memory the next one reuses
-  // (made afresh, their megabytes were zeroed and faulted in by one thread each time: on the rod at
-  // 3 mm cells a tenth of an evaluation at two threads).
+  // (made afresh, their buffers were zeroed and faulted in by one thread each time: on the rod at 3 mm
+  // cells about a tenth of an evaluation at two threads).
   NodeSums sums;
   FitCells fits;
 
