@@ -52,7 +52,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   const auto stride = G.strides();
   const detail::NodeIndexing node_indexing(G);
   const auto node_ijk = [&](int64_t n) { return node_indexing.ijk(n); };
-  const auto node_pos = [&](int64_t n) { return node_indexing.position(n); };
+  const auto node_pos = [&](const std::array<int64_t, 3>& ijk) { return node_indexing.position(ijk); };
   const bool circle = ts.contour == crack::TipSettings::Contour::Circle;
   const double contour_extent = ts.radius * h * (circle ? 1.0 : std::sqrt(2.0));
   const double cod_distance = std::max(ts.radius, kCodCells) * h;
@@ -415,7 +415,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       const bool in_grid = for_cell_nodes(x, [&](int64_t n, double w) {
         if (w == 0.0) return;
         const auto ijk = node_ijk(n);
-        const Sums* s = field(n, tris.key(x, node_pos(n), cand, ijk[0] - cell[0], ijk[1] - cell[1], ijk[2] - cell[2]));
+        const Sums* s = field(n, tris.key(x, node_pos(ijk), cand, ijk[0] - cell[0], ijk[1] - cell[1], ijk[2] - cell[2]));
         if (!s) return;
         const double k = w / s->m;
         const double kinetic = 0.5 * (s->rho_vv - 2.0 * v_tip.dot(s->rho_v) + s->rho * v_tip.squaredNorm());
@@ -443,12 +443,12 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       St st;
       st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);
       const auto base = node_ijk(st.base);
-      tris.gather_stencil<St::K>(base, node_pos(st.base), P.x[p], cand);
+      tris.gather_stencil<St::K>(base, node_pos(base), P.x[p], cand);
       tris.mask_lines<St::K>(P.x[p], base, cand);
       Mat<3> gv = Mat<3>::Zero();
       st.for_each([&](int64_t n, double, const V& g) {
         const auto ijk = node_ijk(n);
-        const Sums* s = field(n, tris.key(P.x[p], node_pos(n), cand, ijk[0] - base[0], ijk[1] - base[1], ijk[2] - base[2]));
+        const Sums* s = field(n, tris.key(P.x[p], node_pos(ijk), cand, ijk[0] - base[0], ijk[1] - base[1], ijk[2] - base[2]));
         if (s) gv += (s->v / s->m) * g.transpose();
       });
       J += P.mass[p] * weight * (grad_u(p).transpose() * accel(p) - gv.transpose() * (v_rel(p) - v_tip));

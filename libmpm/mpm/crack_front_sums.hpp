@@ -30,8 +30,8 @@ struct NodeIndexing {
     for (int d = 0; d < 3; ++d) c[d] = n / stride[d], n %= stride[d];
     return c;
   }
-  Vec<3> position(int64_t n) const {
-    const auto c = ijk(n);
+  // The position of node (i, j, k) (callers have its (i, j, k) already: ijk's divisions once).
+  Vec<3> position(const std::array<int64_t, 3>& c) const {
     return Vec<3>(coordinate(0, c[0]), coordinate(1, c[1]), coordinate(2, c[2]));
   }
   // The coordinate along axis d of the nodes with index i along it.
@@ -456,7 +456,7 @@ class NodeSums {
     constexpr int kLo = K == 2 ? -1 : -2, kHi = K == 2 ? 0 : 1;  // cells whose particles reach a node
     const NodeIndexing indexing(G);
     const auto ijk_of = [&](int64_t n) { return indexing.ijk(n); };
-    const auto node_x = [&](int64_t n) { return indexing.position(n); };
+    const auto node_x = [&](const std::array<int64_t, 3>& ijk) { return indexing.position(ijk); };
 
     // slot_of(ijk, n): node n's place in nodes_, or -1 (not needed), from a table over the bins' box
     // (+1 node per axis; a binary search for a node outside it).
@@ -510,7 +510,8 @@ class NodeSums {
     slab_begin_.clear();
     int64_t last = -1;
     for (std::size_t q = 0; q < cells.size(); ++q)
-      if (const int64_t slab = cells[q] / per_layer / kSlab; slab != last) slab_begin_.push_back(static_cast<int64_t>(q)), last = slab;
+      if (const int64_t slab = cells[q] / per_layer / kSlab; slab != last)
+        slab_begin_.push_back(static_cast<int64_t>(q)), last = slab;
     slab_begin_.push_back(static_cast<int64_t>(cells.size()));
     const int64_t slabs = static_cast<int64_t>(slab_begin_.size()) - 1;
     for (std::size_t u = 0; u < nodes_.size(); ++u) acc_[u].clear();
@@ -540,14 +541,14 @@ class NodeSums {
                 if (u >= 0) {
                   if (!gathered) {
                     // (Linear shapes: the particles of a cell share its candidates.)
-                    if (K != 2 || cand_base != b0) tris.gather_stencil<K>(b0, node_x(st.base), P.x[p], cand);
+                    if (K != 2 || cand_base != b0) tris.gather_stencil<K>(b0, node_x(b0), P.x[p], cand);
                     if (K == 2) cand_base = b0;
                     tris.mask_lines<K>(P.x[p], b0, cand);
                     gathered = true;
                   }
                   const int a = j / (K * K), b = j / K % K, e = j % K;
                   const uint32_t key =
-                      TriangleBins::masked_out(cand, a, b, e) ? 0 : tris.key_tested(P.x[p], node_x(n), cand, a, b, e);
+                      TriangleBins::masked_out(cand, a, b, e) ? 0 : tris.key_tested(P.x[p], node_x(ijk), cand, a, b, e);
                   if (key != crack::kFieldKeyOverflow) {
                     if (!shared) {
                       const double mass = P.mass[p];
