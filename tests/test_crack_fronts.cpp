@@ -210,8 +210,9 @@ TEST(CrackFrontJ, AUniformVelocityAddedToEveryParticleLeavesJUnchanged) {
   EXPECT_NE(before_with[0].J1, before_without[0].J1);
 }
 
-// The evaluation's sums are per grid node in a fixed particle order (crack_front_sums.hpp), its front
-// nodes independent: one and two threads give the same bits.
+// The evaluation's sums are per grid node in a fixed particle order (crack_front_sums.hpp), the
+// domain integral's per front node in cell and particle order, its front nodes independent: one and
+// two threads give the same bits, with the contour and with the domain integral.
 TEST(CrackFrontJ, OneAndTwoThreadsGiveTheSameBits) {
   json s = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/block_penny_crack.json");
   s.erase("output");
@@ -219,21 +220,26 @@ TEST(CrackFrontJ, OneAndTwoThreadsGiveTheSameBits) {
   Model<3> m = build_model<3>(s);
   auto st = make_stepper<3>(m);
   ASSERT_FALSE(test::advance(*st, 40));  // the pulse has reached the crack
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  const auto one = st->crack_front_parameters(*m.crack_tips);
-  omp_set_num_threads(2);
-  const auto two = st->crack_front_parameters(*m.crack_tips);
-  omp_set_num_threads(threads);
-  ASSERT_EQ(one.size(), two.size());
-  ASSERT_GT(one.size(), 10u);
-  for (std::size_t i = 0; i < one.size(); ++i) {
-    EXPECT_EQ(one[i].J1, two[i].J1) << i;
-    EXPECT_EQ(one[i].J2, two[i].J2) << i;
-    EXPECT_EQ(one[i].KI, two[i].KI) << i;
-    EXPECT_EQ(one[i].KIII, two[i].KIII) << i;
+  for (const auto integral : {crack::TipSettings::Integral::Contour, crack::TipSettings::Integral::Domain}) {
+    crack::TipSettings ts = *m.crack_tips;
+    ts.integral = integral;
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const auto one = st->crack_front_parameters(ts);
+    omp_set_num_threads(2);
+    const auto two = st->crack_front_parameters(ts);
+    omp_set_num_threads(threads);
+    const int domain = integral == crack::TipSettings::Integral::Domain;
+    ASSERT_EQ(one.size(), two.size()) << "domain " << domain;
+    ASSERT_GT(one.size(), 10u) << "domain " << domain;
+    for (std::size_t i = 0; i < one.size(); ++i) {
+      EXPECT_EQ(one[i].J1, two[i].J1) << i << ", domain " << domain;
+      EXPECT_EQ(one[i].J2, two[i].J2) << i << ", domain " << domain;
+      EXPECT_EQ(one[i].KI, two[i].KI) << i << ", domain " << domain;
+      EXPECT_EQ(one[i].KIII, two[i].KIII) << i << ", domain " << domain;
+    }
+    EXPECT_GT(one[0].J1, 0.0) << "domain " << domain;
   }
-  EXPECT_GT(one[0].J1, 0.0);
 }
 
 // The stepper keeps the particles near the fronts between evaluations (FrontParticles) while no

@@ -7,13 +7,15 @@
 // CPU times (with one thread, insensitive to time slices lost to other processes on a shared
 // machine) and the ratio of the fastest block of each (the least disturbed by other processes).
 // Usage: cleave-bench-crack [--case dcb|rod3d|fronts|tips|costs] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked|evaluation] [--null]
+//          [--integral contour|domain]
 // --case costs: what `cleave run` reports each part costs (core/part_costs.hpp), the DCB (2 mm cells
 // unless --cell) run to its end with its crack and J/K at the tip, and without the crack; exits 1
 // unless the uncracked run's crack fields, contact and J/K parts recorded no scope and no time.
 // --case fronts: the cost of evaluating J and K at every front node (crack_tips in 3D, issue 17) against
 // one step, the rod at 3 mm cells (480 000 particles) stepped to 30 us (the load has reached the crack), then a step and
 // an evaluation alternately (which first alternates too), R = 10 repetitions; --only evaluation: R evaluations
-// of the state at 30 us and nothing else (for a profiler).
+// of the state at 30 us and nothing else (for a profiler); --integral domain: J1 by the domain integral
+// (crack_tips.integral, with eq. 33's inertia term) instead of the scene's contour.
 // --case tips: the same for the 2D tip of the DCB (0.5 mm cells unless --cell, 57 600 particles) with each
 // contour setting of docs/validation.md's "The defaults", R = 20 repetitions each.
 // --case rod3d: the same for 3D cracks, the quarter rod of seed 000 §4.1 (data/scenes/rod_elliptical_crack.json)
@@ -213,7 +215,7 @@ int bench_costs(const nlohmann::json& cracked_scene) {
 int main(int argc, char** argv) {
   double cell = 0;
   int steps = 2, reps = 0;
-  std::string only, which = "dcb";
+  std::string only, which = "dcb", integral = "contour";
   bool null_test = false;  // both models uncracked: the benchmark's own bias and noise
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -224,16 +226,19 @@ int main(int argc, char** argv) {
     else if (a == "--reps" && i + 1 < argc) reps = std::atoi(argv[++i]);
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else if (a == "--null") null_test = true;
+    else if (a == "--integral" && i + 1 < argc) integral = argv[++i];
     else ok = false;
     if (!ok || (!only.empty() && only != "cracked" && only != "uncracked" && (only != "evaluation" || which != "fronts")) ||
-        (which != "dcb" && which != "rod3d" && which != "fronts" && which != "tips" && which != "costs")) {
-      std::fprintf(stderr, "usage: cleave-bench-crack [--case dcb|rod3d|fronts|tips|costs] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked|evaluation] [--null]\n");
+        (which != "dcb" && which != "rod3d" && which != "fronts" && which != "tips" && which != "costs") ||
+        (integral != "contour" && (integral != "domain" || which != "fronts"))) {
+      std::fprintf(stderr, "usage: cleave-bench-crack [--case dcb|rod3d|fronts|tips|costs] [--cell MM] [--steps N] [--reps R] [--only cracked|uncracked|evaluation] [--null] [--integral contour|domain]\n");
       return a == "--help" ? 0 : 2;
     }
   }
   if (which == "fronts") {
     nlohmann::json scene = load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/rod_elliptical_crack.json");
     scene["resolution"] = cell > 0 ? cell : 3.0;
+    if (integral == "domain") scene["crack_tips"].update({{"integral", "domain"}, {"volume_term", true}});
     return bench_fronts(scene, reps > 0 ? reps : 10, only);
   }
   if (which == "rod3d") {  // seed 000 §4.1, its quarter model refined to >= 500 000 particles (3 mm: 480 000)

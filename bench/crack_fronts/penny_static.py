@@ -29,7 +29,12 @@ ap.add_argument("--ppc", type=int, default=2)
 ap.add_argument("--shape-function", default="linear", help="linear or ugimp")
 ap.add_argument("--threads", default="")
 ap.add_argument("--tip-cut", type=float, help="cracks[0].tip_cut, cells (default: the scene default)")
+ap.add_argument("--integral", default="contour", help="contour (eqs. 32-33) or domain (J1 by the domain integral)")
+ap.add_argument("--along", type=float, help="domain integral: the weight's half-length along the front, cells")
+ap.add_argument("--inner", type=float, help="domain integral: the part of the radius where the weight is 1")
 args = ap.parse_args()
+domain_keys = {"integral": args.integral, **({"along": args.along} if args.along is not None else {}),
+               **({"inner": args.inner} if args.inner is not None else {})}
 
 a, sigma = 8.0, 10.0  # mm, MPa
 h = a / args.cells
@@ -56,7 +61,7 @@ def scene(block, radius):
                   {"type": "traction", "face": "-z", "traction": [0, 0, -sigma], "rise_time": 20}],
         "damping": {"kinetic": args.damping},
         "time": {"end": args.end_us, "cfl": 0.5},
-        "crack_tips": {"radius": radius, "volume_term": args.volume_term,
+        "crack_tips": {"radius": radius, "volume_term": args.volume_term, **domain_keys,
                        "reference": {"type": "embedded_crack", "crack": "penny", "stress": sigma}},
         "output": {"interval": args.end_us, "tip_interval": args.end_us / 10, "precision": "float32",
                    "fields": ["displacement"]},
@@ -69,7 +74,7 @@ print("block | contour | t (us) | K_I/ref min..max (mean) | max |K_II|/ref | max
 for block in [float(b) for b in args.blocks.split(",")]:
     for radius in [float(r) for r in args.radii.split(",")]:
         tag = (f"c{args.cells}_b{block:g}_r{radius:g}{'_v' if args.volume_term else ''}_{args.shape_function}"
-               f"{'' if args.tip_cut is None else f'_cut{args.tip_cut:g}'}")
+               f"{'' if args.tip_cut is None else f'_cut{args.tip_cut:g}'}_{args.integral}{args.along or ''}{args.inner or ''}")
         rows, times, wall = run_scene(args.cleave, scene(block, radius), pathlib.Path(args.out) / tag, args.threads)
         for t in times[-3:]:
             good = [r for r in rows if float(r["time_s"]) == t and int(float(r["flag"])) == 0]

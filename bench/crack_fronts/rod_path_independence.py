@@ -20,7 +20,12 @@ ap.add_argument("--no-oop", action="store_true", help="seed 000's plain contour 
 ap.add_argument("--threads", default="2")
 ap.add_argument("--out", default="/tmp/cleave_rod_path")
 ap.add_argument("--cleave", default=str(root / "build/bin/cleave"))
+ap.add_argument("--integral", default="contour", help="contour (eqs. 32-33) or domain (J1 by the domain integral)")
+ap.add_argument("--along", type=float, help="domain integral: the weight's half-length along the front, cells")
+ap.add_argument("--inner", type=float, help="domain integral: the part of the radius where the weight is 1")
 args = ap.parse_args()
+domain_keys = {"integral": args.integral, **({"along": args.along} if args.along is not None else {}),
+               **({"inner": args.inner} if args.inner is not None else {})}
 
 base = json.loads((root / "data/scenes/rod_elliptical_crack.json").read_text())
 radii = tuple(float(r) for r in args.radii.split(","))  # mm
@@ -30,7 +35,7 @@ out = pathlib.Path(args.out)
 def run(eq, r):
     s = json.loads(json.dumps(base))
     s["resolution"] = args.resolution
-    s["crack_tips"] = {"radius": r / args.resolution, "volume_term": eq == 33, "out_of_plane_term": not args.no_oop,
+    s["crack_tips"] = {"radius": r / args.resolution, "volume_term": eq == 33, "out_of_plane_term": not args.no_oop, **domain_keys,
                        "reference": base["crack_tips"]["reference"]}
     s["output"] = {"tip_interval": 5, "interval": 100, "precision": "float32", "fields": ["displacement"]}
     rows, _, _ = run_scene(args.cleave, s, out / f"eq{eq}_r{r:g}mm", args.threads)

@@ -34,6 +34,9 @@ ap.add_argument("--volume-term", action="store_true")
 ap.add_argument("--detection", choices=["volume", "displacement", "none"],
                 help="the crack's contact detection (none: no contact law); default: the scene's")
 ap.add_argument("--tip-cut", type=float, help="cracks[0].tip_cut, cells (default: the scene's)")
+ap.add_argument("--integral", default="contour", help="contour (eqs. 32-33) or domain (J1 by the domain integral)")
+ap.add_argument("--along", type=float, help="domain integral: the weight's half-length along the front, cells")
+ap.add_argument("--inner", type=float, help="domain integral: the part of the radius where the weight is 1")
 args = ap.parse_args()
 
 files = {"rod": "rod_elliptical_crack.json", "cylinder": "cylinder_surface_crack.json", "bar": "bar_inclined_penny.json"}
@@ -54,7 +57,11 @@ s["time"]["end"] = args.end or defaults[args.case][0]
 s.setdefault("units", {})["inverse_time"] = "1/us"
 s["damping"] = {"kinetic": args.damping if args.damping is not None else defaults[args.case][1]}
 ct = {"radius": (args.radius / h) if args.radius else 2, "out_of_plane_term": not args.no_oop,
-      "volume_term": args.volume_term}
+      "volume_term": args.volume_term, "integral": args.integral}
+if args.along is not None:
+    ct["along"] = args.along
+if args.inner is not None:
+    ct["inner"] = args.inner
 if args.case == "rod":
     ct["reference"] = {"type": "embedded_crack", "crack": "ellipse", "stress": 400}
 if args.case == "bar":
@@ -70,7 +77,8 @@ end = s["time"]["end"]
 s["output"] = {"interval": end, "tip_interval": end / 20, "precision": "float32", "fields": ["displacement"]}
 
 tag = (f"{args.case}_h{h:g}_r{ct['radius']:g}{'_plain' if args.no_oop else ''}{'_v' if args.volume_term else ''}"
-       f"{'_' + args.detection if args.detection else ''}{'' if args.tip_cut is None else f'_cut{args.tip_cut:g}'}")
+       f"{'_' + args.detection if args.detection else ''}{'' if args.tip_cut is None else f'_cut{args.tip_cut:g}'}"
+       f"{'' if args.integral == 'contour' else '_' + args.integral + str(args.along or '') + str(args.inner or '')}")
 rows, times, wall = run_scene(args.cleave, s, pathlib.Path(args.out) / tag, args.threads)
 last = [r for r in rows if float(r["time_s"]) == times[-1]]
 pos = lambda r: [float(r[k]) * 1e3 for k in ("x_m", "y_m", "z_m")]  # mm

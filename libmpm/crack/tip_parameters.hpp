@@ -22,6 +22,12 @@ struct TipSettings {
   // contour of a curved front overestimates J by about 0.46 r / R (contour radius r, front radius
   // R: +12 % for a 2-cell contour on a penny crack of 8 cells; docs/validation.md).
   bool out_of_plane_term = true;
+  // 3D fronts only: J1 by the equivalent domain integral (crack_front_domain.hpp) over a tube of
+  // `radius` cells about the front instead of the plane contour (which still gives J2): its weight is 1
+  // within `inner` x radius of the front, falls to 0 at the radius, and along the front falls from 1 at
+  // the node to 0 at `along` cells from it (smooth steps). It takes the out-of-plane term exactly.
+  enum class Integral { Contour, Domain } integral = Integral::Contour;
+  double along = 4.0, inner = 0.5;
 };
 
 // Crack-tip frame: e1 along the crack, pointing ahead of the tip; e2 its left normal. The "+" face

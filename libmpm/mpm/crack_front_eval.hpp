@@ -27,6 +27,7 @@
 #include "libmpm/crack/crossing3d.hpp"
 #include "libmpm/crack/front_along_term.hpp"
 #include "libmpm/crack/front_parameters.hpp"
+#include "libmpm/mpm/crack_front_domain.hpp"
 #include "libmpm/mpm/crack_front_fit.hpp"
 #include "libmpm/mpm/crack_front_kept.hpp"
 #include "libmpm/mpm/crack_front_sums.hpp"
@@ -58,7 +59,10 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   const double cod_distance = std::max(ts.radius, kCodCells) * h;
   // Everything a front node's evaluation touches lies within this distance of it: the contour, its
   // cells' nodes and the particles reaching them (1 + 1.5 cells), with a margin.
-  const double reach = std::max(contour_extent, cod_distance) + 4.5 * h;
+  // (The domain integral's tube and tent, and its particles' stencils.)
+  const double reach = std::max({contour_extent, cod_distance,
+                                 ts.integral == crack::TipSettings::Integral::Domain ? (ts.radius + ts.along) * h : 0.0}) +
+                       4.5 * h;
   const bool rotations = !P.rotation3.empty();
 
 
@@ -71,6 +75,17 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       if (c.tip[f])
         for (std::size_t k = 0; k < c.fronts[f].nodes.size(); ++k)
           jobs.push_back({c.id, static_cast<int>(f), static_cast<int>(k)});
+  // The domain integral's fronts as polylines (one per front with jobs), and each job's.
+  const bool domain = ts.integral == crack::TipSettings::Integral::Domain;
+  std::vector<detail::FrontPolyline> lines;
+  std::vector<int> line_of(jobs.size(), -1);
+  if (domain)
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+      if (j == 0 || jobs[j].crack != jobs[j - 1].crack || jobs[j].front != jobs[j - 1].front)
+        lines.emplace_back(m.cracks[jobs[j].crack], static_cast<std::size_t>(jobs[j].front), m.symmetry_planes, h,
+                           (ts.radius + ts.along + 2.0) * h);
+      line_of[j] = static_cast<int>(lines.size()) - 1;
+    }
   // The particles binned in the box of everything the front nodes' evaluations touch.
   detail::CellBins local_bins;
   const detail::CellBins& bins = [&]() -> const detail::CellBins& {
@@ -432,7 +447,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     for (const auto& cp : contour) {
       Point q;
       if (!interpolate(cp.x, q)) {
-        rec.flag |= crack::kFlagContourOutside;
+        if (!domain) rec.flag |= crack::kFlagContourOutside;  // (the domain integral checks its own tube)
         continue;
       }
       J += cp.length * (q.energy * cp.n - q.grad_u.transpose() * (q.stress * cp.n));
@@ -465,7 +480,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     // particles: a derivative along the front across one slab's particles, or between the nodes'
     // int_A q^_k, reads the particle lattice rather than the field (docs/validation.md). For J2
     // (k = 2) it is left out.
-    if (ts.out_of_plane_term) {
+    if (ts.out_of_plane_term && !domain) {
       const double kappa = front_curvature(c.fronts[job.front], c.points, job.node);
       double q1 = 0.0, q2 = 0.0;
       for (const auto& [p, weight] : inside) {
@@ -478,6 +493,30 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       const double area = circle ? M_PI * ts.radius * ts.radius * h * h : 4.0 * ts.radius * ts.radius * h * h;
       if (S.slab_material < 0.9 * area * h) rec.flag |= crack::kFlagContourOutside;
       rec.J1 -= kappa * q1, rec.J2 -= kappa * q2;
+    }
+    // J1 by the domain integral (crack_front_domain.hpp) over the particles of the tube, in cell and
+    // particle order.
+    if (domain) {
+      const detail::DomainWeight dw{&lines[line_of[j]], static_cast<std::size_t>(job.node), ts.radius * h,
+                                    ts.inner * ts.radius * h, ts.along * h};
+      double integral = 0.0, material = 0.0;
+      for_cells_near(dw.R + dw.L, INFINITY, [&](int64_t cell, double, double) {
+        for (int64_t k = bins.begin[cell]; k < bins.begin[cell + 1]; ++k) {
+          const int32_t p = bins.particle[k];
+          V qp;
+          Mat<3> Q;
+          if (!dw.q(P.x[p], qp, Q)) continue;
+          const Mat<3> gu = grad_u(p), sigma = detail::full_tensor(P.stress[p]);
+          const double W = m.materials[P.material[p]]->strain_energy_density(P.stress[p], P.strain[p]);
+          const double vol = P.volume(p);
+          integral += vol * ((gu.transpose() * sigma).cwiseProduct(Q).sum() - W * Q.trace());
+          if (ts.volume_term) integral += P.mass[p] * (gu.transpose() * accel(p)).dot(qp);  // (inertia: eq. 33)
+          material += vol * qp.norm();
+        }
+      });
+      rec.J1 = integral / dw.line->psi_integral(dw.line->node_s(dw.j), dw.L);
+      // The tube should be full of material: a free surface across it leaves part out.
+      if (material < 0.9 * dw.full_volume()) rec.flag |= crack::kFlagContourOutside;
     }
 
     Point a, b;
@@ -502,7 +541,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   for (const auto& e : failure)
     if (!e.empty()) throw std::runtime_error(e);
   // The out-of-plane term's along-front part, from the K of each front's nodes (front_along_term.hpp).
-  if (ts.out_of_plane_term) {
+  if (ts.out_of_plane_term && !domain) {
     const double L = crack::along_front_length(ts, h);
     for (std::size_t a = 0; a < jobs.size();) {
       std::size_t b = a;  // jobs a .. b - 1: one front's nodes, in node order

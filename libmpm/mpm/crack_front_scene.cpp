@@ -107,11 +107,30 @@ void square_frames_on_symmetry_planes(Model<3>& m) {
 }  // namespace
 
 void read_front_tips(const json& scene, const UnitSystem& units, Model<3>& m) {
-  crack::TipSettings s = read_contour_settings(scene, m, units.factor(Quantity::Time), {"reference", "out_of_plane_term"});
+  crack::TipSettings s = read_contour_settings(scene, m, units.factor(Quantity::Time),
+                                              {"reference", "out_of_plane_term", "integral", "along", "inner"});
   if (scene["crack_tips"].contains("out_of_plane_term")) {
     const json& v = scene["crack_tips"]["out_of_plane_term"];
     if (!v.is_boolean()) throw SceneError("crack_tips.out_of_plane_term", "expected true or false");
     s.out_of_plane_term = v.get<bool>();
+  }
+  {
+    const ObjectReader r(scene["crack_tips"], "crack_tips",
+                         {"interval", "contour", "radius", "points", "volume_term", "reference", "out_of_plane_term",
+                          "integral", "along", "inner"});
+    const std::string integral = r.string_or("integral", "contour");
+    if (integral == "domain") s.integral = crack::TipSettings::Integral::Domain;
+    else if (integral != "contour")
+      throw SceneError(r.at("integral"), "unknown integral \"" + integral + "\"; valid: contour, domain");
+    const bool domain = s.integral == crack::TipSettings::Integral::Domain;
+    for (const char* key : {"along", "inner"})
+      if (r.has(key) && !domain)
+        throw SceneError(r.at(key), "only with \"integral\": \"domain\" (the domain integral's weight)");
+    s.along = r.positive_or("along", s.along);
+    if (s.along < 1.0) throw SceneError(r.at("along"), "at least 1 cell (got " + r["along"].dump() + ")");
+    s.inner = r.number_or("inner", s.inner);
+    if (!(s.inner >= 0.0 && s.inner < 1.0))
+      throw SceneError(r.at("inner"), "from 0 to less than 1 (got " + r["inner"].dump() + ")");
   }
   square_frames_on_symmetry_planes(m);
   const double h = m.grid.h;

@@ -495,8 +495,9 @@ crack::TipSettings read_contour_settings(const json& scene, Model<Dim>& m, doubl
       for (const char* k : keys) valid += (valid.empty() ? "" : ", ") + std::string(k);
       throw SceneError("crack_tips." + it.key(), "unknown key; valid keys: " + valid);
     }
+  // (The keys were checked above, against this dimension's list.)
   const ObjectReader r(ct, "crack_tips", {"interval", "contour", "radius", "points", "volume_term", "reference",
-                                                  "out_of_plane_term"});
+                                          "out_of_plane_term", "integral", "along", "inner"});
   if (m.cracks.empty()) throw SceneError("crack_tips", "the scene declares no cracks (key \"cracks\")");
   crack::TipSettings s;
   // crack_tips.interval: the older spelling of output.tip_interval, the key of every method.
