@@ -100,13 +100,21 @@ struct FrontPolyline {
     double s = 0.0, r = INFINITY;
     Vec<3> away = Vec<3>::Zero(), grad_s = Vec<3>::Zero(), e1 = Vec<3>::Zero(), de1_ds = Vec<3>::Zero();
   };
-  Near nearest(const Vec<3>& p) const {
+  // Among the segments that meet the arc lengths [lo, hi] only (an open polyline's; a closed one's
+  // are all searched).
+  Near nearest(const Vec<3>& p, double lo = -INFINITY, double hi = INFINITY) const {
     Near best;
     const std::size_t n = x.size(), segments = closed ? n : (n > 0 ? n - 1 : 0);
     if (n == 1) best = {s[0], (p - x[0]).norm(), Vec<3>::Zero(), Vec<3>::Zero(), e1[0], Vec<3>::Zero()};
-    std::size_t at = 0;
+    std::size_t at = 0, k0 = 0, k1 = segments;
+    if (!closed && segments > 0) {  // segment k spans [s[k], s[k + 1]]
+      k0 = std::min(segments - 1, static_cast<std::size_t>(std::max<std::ptrdiff_t>(
+                                      0, std::upper_bound(s.begin(), s.end(), lo) - s.begin() - 1)));
+      k1 = std::min<std::size_t>(segments, static_cast<std::size_t>(std::lower_bound(s.begin(), s.end(), hi) - s.begin()));
+      k1 = std::max(k1, k0 + 1);
+    }
     double at_t = 0.0;
-    for (std::size_t k = 0; k < segments; ++k) {
+    for (std::size_t k = k0; k < k1; ++k) {
       const std::size_t l = (k + 1) % n;
       const Vec<3> d = x[l] - x[k];
       const double len2 = d.squaredNorm();
@@ -168,18 +176,30 @@ struct DomainWeight {
   double R = 0.0, R_in = 0.0, L = 0.0;
   // q at p (returns false where it and its gradient are zero) and its gradient Q_kj = dq_k / dx_j:
   // the node's weight along the front plus its mirror images'.
+  // Most particles a node's walk meets lie outside its weight: they are told by the nearest point
+  // among the segments within L of the node and of its images along the front. Where that point is
+  // R or more away, or L or more along the front from them all, so is the nearest point of the
+  // whole front, or it lies beyond L of them all: the weight is zero either way. Otherwise the whole
+  // front's nearest point decides.
   bool q(const Vec<3>& p, Vec<3>& q, Mat<3>& Q) const {
-    const auto near = line->nearest(p);
-    if (near.r >= R) return false;
     const double sj = line->node_s(j);
-    double psi = 0.0, dpsi = 0.0;
-    const auto add = [&](double centre) {
-      const double ds = line->along(centre, near.s), u = std::fabs(ds) / L;
-      psi += smooth_step(u), dpsi += smooth_step_slope(u) * (ds > 0.0 ? 1.0 : -1.0) / L;
+    double centres[3] = {sj, 0.0, 0.0};
+    int count = 1;
+    for (const double plane : line->planes)  // (an image farther than 2 L weighs nothing on this side)
+      if (std::fabs(plane - sj) < L && count < 3) centres[count++] = 2.0 * plane - sj;
+    const auto weight = [&](double at, double& psi, double& dpsi) {
+      psi = 0.0, dpsi = 0.0;
+      for (int c = 0; c < count; ++c) {
+        const double ds = line->along(centres[c], at), u = std::fabs(ds) / L;
+        psi += smooth_step(u), dpsi += smooth_step_slope(u) * (ds > 0.0 ? 1.0 : -1.0) / L;
+      }
+      return psi != 0.0 || dpsi != 0.0;
     };
-    add(sj);
-    for (const double plane : line->planes) add(2.0 * plane - sj);
-    if (psi == 0.0 && dpsi == 0.0) return false;
+    const double lo = *std::min_element(centres, centres + count) - L, hi = *std::max_element(centres, centres + count) + L;
+    double psi, dpsi;
+    if (const auto w = line->nearest(p, lo, hi); w.r >= R || !weight(w.s, psi, dpsi)) return false;
+    const auto near = line->nearest(p);
+    if (near.r >= R || !weight(near.s, psi, dpsi)) return false;
     const double w = R - R_in, u = (near.r - R_in) / w;
     const double phi = smooth_step(u), dphi = smooth_step_slope(u) / w;
     q = phi * psi * near.e1;

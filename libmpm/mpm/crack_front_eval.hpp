@@ -503,6 +503,9 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       for_cells_near(dw.R + dw.L, INFINITY, [&](int64_t cell, double, double) {
         for (int64_t k = bins.begin[cell]; k < bins.begin[cell + 1]; ++k) {
           const int32_t p = bins.particle[k];
+          // (The weight's support lies within R + L of the node: a chord is no longer than its arc, and
+          // a mirror image's part on this side lies nearer the node than the image.)
+          if ((P.x[p] - f.x).squaredNorm() >= (dw.R + dw.L) * (dw.R + dw.L)) continue;
           V qp;
           Mat<3> Q;
           if (!dw.q(P.x[p], qp, Q)) continue;

@@ -100,13 +100,20 @@ class MpmMethod final : public Method<Dim> {
           tips += c.tip[0] + c.tip[1];
         }
       const auto& t = *m.crack_tips;
-      out.push_back(format("%s, J by %s on a %s of %.6g cells (%d points), %s every %.6g s",
-                           Dim == 3 ? format("crack fronts: %d, %zu nodes", tips, nodes).c_str()
-                                    : format("crack tips: %d", tips).c_str(),
-                           (std::string(t.volume_term ? "eq. 33 (contour + volume)" : "eq. 32 (contour)") +
-                            (Dim == 3 && t.out_of_plane_term ? " less the out-of-plane term" : "")).c_str(),
-                           t.contour == crack::TipSettings::Contour::Circle ? "circle" : "square", t.radius, t.points,
-                           this->tip_file().c_str(), m.output.tip_interval));
+      if (Dim == 3 && t.integral == crack::TipSettings::Integral::Domain)
+        out.push_back(format("crack fronts: %d, %zu nodes, J1 by the domain integral%s over a tube of %.6g cells "
+                             "(weight 1 within %.6g cells, along the front %.6g cells), J2 and the openings from the "
+                             "contour, %s every %.6g s",
+                             tips, nodes, t.volume_term ? " with inertia (eq. 33)" : " without inertia (eq. 32)", t.radius,
+                             t.inner * t.radius, t.along, this->tip_file().c_str(), m.output.tip_interval));
+      else
+        out.push_back(format("%s, J by %s on a %s of %.6g cells (%d points), %s every %.6g s",
+                             Dim == 3 ? format("crack fronts: %d, %zu nodes", tips, nodes).c_str()
+                                      : format("crack tips: %d", tips).c_str(),
+                             (std::string(t.volume_term ? "eq. 33 (contour + volume)" : "eq. 32 (contour)") +
+                              (Dim == 3 && t.out_of_plane_term ? " less the out-of-plane term" : "")).c_str(),
+                             t.contour == crack::TipSettings::Contour::Circle ? "circle" : "square", t.radius, t.points,
+                             this->tip_file().c_str(), m.output.tip_interval));
       for (const auto& r : m.front_references)
         out.push_back(format("reference: crack '%s' as an embedded %s in an infinite body, %.6g Pa along (%.3g, %.3g, "
                              "%.3g)", m.cracks[r.crack].name.c_str(), r.a == r.b ? "circle" : "ellipse", r.stress,
