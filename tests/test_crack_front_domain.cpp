@@ -22,7 +22,7 @@ namespace {
 using nlohmann::json;
 constexpr double kPi = 3.14159265358979323846;
 
-TEST(FrontDomain, APolylinesNearestPointAndItsTentIntegralAreExact) {
+TEST(FrontDomain, APolylinesNearestPointAndItsWeightsIntegralAreExact) {
   // A straight front along z, nodes every 0.5 mm, as a crack's front would give them.
   const Model<3> m = build_model<3>(test::dcb_slab_scene(3, 0.1));
   const detail::FrontPolyline line(m.cracks[0], 0);
@@ -88,7 +88,7 @@ struct WilliamsModeI {
 // mode-I field about a straight front (stress from the strain by Hooke's law, the displacement and its
 // rotation), along a grid axis and turned 30 degrees in the crack's plane. J1 = K^2 (1 - nu^2) / E at
 // every front node whose tube lies in the material, within 2 % (the 2D evaluator's tolerance on an
-// exact field; docs/validation.md): the shape functions' q and the particles' midpoint rule.
+// exact field; docs/validation.md): the particles' midpoint rule of a smooth weight.
 TEST(FrontDomain, RecoversJOfAnExactModeOneFieldAlongAStraightFrontAtAnyAngleToTheGrid) {
   for (const double angle : {0.0, 30.0}) {
     const double a = angle * kPi / 180, E = 3e9, nu = 0.3, K = 1e6;
@@ -131,7 +131,7 @@ TEST(FrontDomain, RecoversJOfAnExactModeOneFieldAlongAStraightFrontAtAnyAngleToT
       crack::TipSettings ts = *m.crack_tips;
       ts.volume_term = inertia;
       for (const auto& r : crack_front_records<LinearShape>(m, ts, zero)) {
-        // (Nodes whose tube and tent lie 4 mm or more inside the block's faces z = 0 and 24 mm.)
+        // (Nodes whose tube and weight along the front lie 4 mm or more inside the block's faces z = 0 and 24 mm.)
         if (r.flag != 0 || r.x.z() < 8e-3 || r.x.z() > 16e-3) continue;
         std::printf("%g deg, node %d at (%.2f, %.2f) mm: J1 / J = %.4f, |K_I| / K = %.4f, K_II %.2g, K_III %.2g\n", angle,
                     r.node, r.x.x() * 1e3, r.x.z() * 1e3, r.J1 / J, std::fabs(r.KI) / K, r.KII / K, r.KIII / K);
@@ -139,7 +139,7 @@ TEST(FrontDomain, RecoversJOfAnExactModeOneFieldAlongAStraightFrontAtAnyAngleToT
         ++checked;
       }
     }
-    EXPECT_GE(checked, 10) << angle << " deg";  // (the nodes whose tube and tent lie in the block)
+    EXPECT_GE(checked, 10) << angle << " deg";  // (the nodes whose tube and weight lie in the block)
   }
 }
 

@@ -12,9 +12,9 @@
 // curvature and for the near-tip fields: docs/validation.md); the domain takes both exactly, for any
 // tube radius, and its integrand is read at the particles, where MPM keeps stress and strain.
 //
-// q is set at the grid's nodes (q_I = phi(r_I) psi(s_I) e1(s_I), r and s the distance from and arc
-// length along the front's polyline to the node's nearest point on it) and taken to the particles by
-// the shape functions and their gradients: a smooth q, whatever the particles' lattice.
+// q = phi(r) psi(s) e1(s), r and s the distance from and the arc length along the front's polyline of
+// a point's nearest point on it, is taken with its gradient in closed form at each particle
+// (DomainWeight below says why not from the grid's nodes).
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -137,7 +137,7 @@ struct FrontPolyline {
     }
     return best;
   }
-  // Arc length from node j's s to s1 (signed; the shorter way round a closed front).
+  // Arc length from s0 to s1 (signed; the shorter way round a closed front).
   double along(double s0, double s1) const {
     double d = s1 - s0;
     if (closed && length > 0.0) d -= length * std::round(d / length);
@@ -175,8 +175,7 @@ struct DomainWeight {
   std::size_t j = 0;
   double R = 0.0, R_in = 0.0, L = 0.0;
   // q at p (returns false where it and its gradient are zero) and its gradient Q_kj = dq_k / dx_j:
-  // the node's weight along the front plus its mirror images'.
-  // Most particles a node's walk meets lie outside its weight: they are told by the nearest point
+  // the node's weight along the front plus its mirror images'. Most particles a node's walk meets lie outside its weight: they are told by the nearest point
   // among the segments within L of the node and of its images along the front. Where that point is
   // R or more away, or L or more along the front from them all, so is the nearest point of the
   // whole front, or it lies beyond L of them all: the weight is zero either way. Otherwise the whole

@@ -57,12 +57,11 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   const bool circle = ts.contour == crack::TipSettings::Contour::Circle;
   const double contour_extent = ts.radius * h * (circle ? 1.0 : std::sqrt(2.0));
   const double cod_distance = std::max(ts.radius, kCodCells) * h;
+  const bool domain = ts.integral == crack::TipSettings::Integral::Domain;
   // Everything a front node's evaluation touches lies within this distance of it: the contour, its
-  // cells' nodes and the particles reaching them (1 + 1.5 cells), with a margin.
-  // (The domain integral's tube and tent, and its particles' stencils.)
-  const double reach = std::max({contour_extent, cod_distance,
-                                 ts.integral == crack::TipSettings::Integral::Domain ? (ts.radius + ts.along) * h : 0.0}) +
-                       4.5 * h;
+  // cells' nodes and the particles reaching them (1 + 1.5 cells), and the domain integral's particles
+  // (within radius + along), with a margin.
+  const double reach = std::max({contour_extent, cod_distance, domain ? (ts.radius + ts.along) * h : 0.0}) + 4.5 * h;
   const bool rotations = !P.rotation3.empty();
 
 
@@ -76,7 +75,6 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
         for (std::size_t k = 0; k < c.fronts[f].nodes.size(); ++k)
           jobs.push_back({c.id, static_cast<int>(f), static_cast<int>(k)});
   // The domain integral's fronts as polylines (one per front with jobs), and each job's.
-  const bool domain = ts.integral == crack::TipSettings::Integral::Domain;
   std::vector<detail::FrontPolyline> lines;
   std::vector<int> line_of(jobs.size(), -1);
   if (domain)

@@ -109,15 +109,14 @@ void square_frames_on_symmetry_planes(Model<3>& m) {
 void read_front_tips(const json& scene, const UnitSystem& units, Model<3>& m) {
   crack::TipSettings s = read_contour_settings(scene, m, units.factor(Quantity::Time),
                                               {"reference", "out_of_plane_term", "integral", "along", "inner"});
-  if (scene["crack_tips"].contains("out_of_plane_term")) {
-    const json& v = scene["crack_tips"]["out_of_plane_term"];
-    if (!v.is_boolean()) throw SceneError("crack_tips.out_of_plane_term", "expected true or false");
-    s.out_of_plane_term = v.get<bool>();
-  }
   {
     const ObjectReader r(scene["crack_tips"], "crack_tips",
                          {"interval", "contour", "radius", "points", "volume_term", "reference", "out_of_plane_term",
                           "integral", "along", "inner"});
+    if (r.has("out_of_plane_term")) {
+      if (!r["out_of_plane_term"].is_boolean()) throw SceneError(r.at("out_of_plane_term"), "expected true or false");
+      s.out_of_plane_term = r["out_of_plane_term"].get<bool>();
+    }
     const std::string integral = r.string_or("integral", "contour");
     if (integral == "domain") s.integral = crack::TipSettings::Integral::Domain;
     else if (integral != "contour")
