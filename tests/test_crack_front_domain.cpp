@@ -60,6 +60,71 @@ TEST(FrontDomain, APolylinesNearestPointAndItsWeightsIntegralAreExact) {
   EXPECT_NEAR(detail::smooth_step_slope(0.5), -1.875, 1e-15);
 }
 
+// The tube (FrontTube) against the weight taken particle by particle about each node: q = phi psi e1
+// and its gradient from the whole front's nearest point, the node's rigid rotation taken out of the
+// displacement gradient, on the rod's quarter-elliptical front (mirrored at both symmetry planes) with
+// made-up fields. The tube reads each particle once for all nodes and searches only the segments near
+// its cell: the same particles and the same sums to round-off.
+TEST(FrontDomain, ATubeReadsEachParticleOnceAndGivesTheSumOfTheWeightsTakenParticleByParticle) {
+  const Model<3> m = build_model<3>(load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/rod_elliptical_crack.json"));
+  const auto& P = m.particles;
+  const double h = m.grid.h, R = 2 * h, R_in = h, L = 3 * h;
+  const detail::FrontPolyline line(m.cracks[0], 0, m.symmetry_planes, h, R + L + 2 * h);
+  ASSERT_EQ(line.planes.size(), 2u);
+  const auto made_up = [&](std::size_t p) {
+    const Vec<3> x = P.x[p] * 50.0;
+    detail::TubeInput in;
+    in.volume = P.volume(p), in.mass = P.mass[p], in.W = 1.0 + x.squaredNorm();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        in.stress(i, j) = std::sin(x[i] + 2.0 * x[j] + x[i] * x[j]);
+        in.grad_u(i, j) = std::cos(3.0 * x[i] - x[j] + i);
+      }
+    in.stress = 0.5 * (in.stress + in.stress.transpose()).eval();
+    in.accel = Vec<3>(std::sin(x.x()), std::cos(x.y()), x.z());
+    return in;
+  };
+  detail::CellBins bins;
+  bins.build(m.grid, P.x, Vec<3>::Constant(-1.0), Vec<3>::Constant(1.0));  // (the whole grid)
+  detail::FrontTube tube(line, R, R_in);
+  tube.build(m.grid, bins, P.x, [&](int32_t p) { return made_up(static_cast<std::size_t>(p)); });
+  std::size_t inside = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) inside += line.nearest(P.x[p]).r < R;
+  EXPECT_EQ(tube.particles().size(), inside);
+  ASSERT_GT(inside, 100u);
+  const Vec<3> theta(1e-3, -2e-3, 3e-3);
+  const std::size_t nodes = m.cracks[0].fronts[0].nodes.size();
+  for (const std::size_t j : {std::size_t{0}, nodes / 2, nodes - 1}) {
+    const double sj = line.node_s(j);
+    std::vector<double> centres{sj};
+    for (const double plane : line.planes)
+      if (std::fabs(plane - sj) < L) centres.push_back(2 * plane - sj);
+    double sum = 0.0, scale = 0.0;
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      const auto nr = line.nearest(P.x[p]);
+      if (!(nr.r < R)) continue;
+      double psi = 0.0, dpsi = 0.0;
+      for (const double c : centres) {
+        const double ds = nr.s - c, u = std::fabs(ds) / L;
+        psi += detail::smooth_step(u), dpsi += detail::smooth_step_slope(u) * (ds > 0 ? 1.0 : -1.0) / L;
+      }
+      const double u = (nr.r - R_in) / (R - R_in);
+      const double phi = detail::smooth_step(u), dphi = detail::smooth_step_slope(u) / (R - R_in);
+      const Vec<3> q = phi * psi * nr.e1;
+      const Mat<3> Q = nr.e1 * (dphi * psi * nr.away + phi * dpsi * nr.grad_s).transpose() +
+                       phi * psi * nr.de1_ds * nr.grad_s.transpose();
+      const detail::TubeInput in = made_up(p);
+      const Mat<3> gu = in.grad_u - detail::displacement_gradient(Sym<3>::Zero(), theta);
+      const double f = in.volume * ((gu.transpose() * in.stress).cwiseProduct(Q).sum() - in.W * Q.trace()) +
+                       in.mass * (gu.transpose() * in.accel).dot(q);
+      sum += f, scale += std::fabs(f);
+    }
+    ASSERT_GT(scale, 0.0);
+    const double J1 = tube.read(j, L, theta).J1 * line.psi_integral(sj, L);
+    EXPECT_NEAR(J1, sum, 1e-12 * scale) << "node " << j;
+  }
+}
+
 // Williams' plane-strain mode-I field about a straight front (e1 ahead, e2 the crack's normal), in
 // global axes: stress, displacement and its gradient at x.
 struct WilliamsModeI {

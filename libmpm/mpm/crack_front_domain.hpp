@@ -14,15 +14,19 @@
 //
 // q = phi(r) psi(s) e1(s), r and s the distance from and the arc length along the front's polyline of
 // a point's nearest point on it, is taken with its gradient in closed form at each particle
-// (DomainWeight below says why not from the grid's nodes).
+// (FrontTube below says why not from the grid's nodes, and how a particle is read once for all the
+// front nodes whose weights reach it).
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "libmpm/core/types.hpp"
 #include "libmpm/crack/explicit_crack.hpp"
 #include "libmpm/crack/front_parameters.hpp"
+#include "libmpm/mpm/crack_front_sums.hpp"  // CellBins, displacement_gradient
 
 namespace cleave::detail {
 
@@ -100,42 +104,20 @@ struct FrontPolyline {
     double s = 0.0, r = INFINITY;
     Vec<3> away = Vec<3>::Zero(), grad_s = Vec<3>::Zero(), e1 = Vec<3>::Zero(), de1_ds = Vec<3>::Zero();
   };
-  // Among the segments that meet the arc lengths [lo, hi] only (an open polyline's; a closed one's
-  // are all searched).
-  Near nearest(const Vec<3>& p, double lo = -INFINITY, double hi = INFINITY) const {
-    Near best;
-    const std::size_t n = x.size(), segments = closed ? n : (n > 0 ? n - 1 : 0);
-    if (n == 1) best = {s[0], (p - x[0]).norm(), Vec<3>::Zero(), Vec<3>::Zero(), e1[0], Vec<3>::Zero()};
-    std::size_t at = 0, k0 = 0, k1 = segments;
-    if (!closed && segments > 0) {  // segment k spans [s[k], s[k + 1]]
-      k0 = std::min(segments - 1, static_cast<std::size_t>(std::max<std::ptrdiff_t>(
-                                      0, std::upper_bound(s.begin(), s.end(), lo) - s.begin() - 1)));
-      k1 = std::min<std::size_t>(segments, static_cast<std::size_t>(std::lower_bound(s.begin(), s.end(), hi) - s.begin()));
-      k1 = std::max(k1, k0 + 1);
-    }
-    double at_t = 0.0;
-    for (std::size_t k = k0; k < k1; ++k) {
-      const std::size_t l = (k + 1) % n;
-      const Vec<3> d = x[l] - x[k];
-      const double len2 = d.squaredNorm();
-      const double t = len2 > 0.0 ? std::clamp((p - x[k]).dot(d) / len2, 0.0, 1.0) : 0.0;
-      const double r = (p - x[k] - t * d).norm();
-      if (r < best.r) best.r = r, best.s = s[k] + t * std::sqrt(len2), at = k, at_t = t;
-    }
-    if (segments == 0) return best;
-    const std::size_t l = (at + 1) % n;
-    const Vec<3> d = x[l] - x[at];
-    const double len = d.norm();
-    const Vec<3> foot = x[at] + at_t * d;
-    if (best.r > 0.0) best.away = (p - foot) / best.r;
-    const Vec<3> e = (1.0 - at_t) * e1[at] + at_t * e1[l];
-    best.e1 = e.normalized();
-    if (at_t > 0.0 && at_t < 1.0 && len > 0.0) {
-      best.grad_s = d / len;
-      const Vec<3> de = (e1[l] - e1[at]) / len;  // d e / ds; of the unit vector: its part normal to it
-      best.de1_ds = (de - best.e1 * best.e1.dot(de)) / e.norm();
-    }
-    return best;
+  // Segment k joins node k to node k + 1 (a closed polyline's last, to node 0).
+  std::size_t segments() const { return closed ? x.size() : (x.empty() ? 0 : x.size() - 1); }
+  Near nearest(const Vec<3>& p) const {
+    if (x.size() == 1) return {s[0], (p - x[0]).norm(), Vec<3>::Zero(), Vec<3>::Zero(), e1[0], Vec<3>::Zero()};
+    Candidate best;
+    for (std::size_t k = 0; k < segments(); ++k) consider(p, k, best);
+    return finish(p, best);
+  }
+  // The same among the segments ids (ascending; the first of the nearest, as nearest()): the answer of
+  // nearest() wherever that lies on one of them.
+  Near nearest_among(const Vec<3>& p, std::span<const uint32_t> ids) const {
+    Candidate best;
+    for (const uint32_t k : ids) consider(p, k, best);
+    return finish(p, best);
   }
   // Arc length from s0 to s1 (signed; the shorter way round a closed front).
   double along(double s0, double s1) const {
@@ -153,6 +135,36 @@ struct FrontPolyline {
     };
     return part(before) + part(after);
   }
+
+ private:
+  struct Candidate {
+    double r = INFINITY, s = 0.0, t = 0.0;
+    std::size_t k = 0;
+  };
+  void consider(const Vec<3>& p, std::size_t k, Candidate& best) const {
+    const Vec<3> d = x[(k + 1) % x.size()] - x[k];
+    const double len2 = d.squaredNorm();
+    const double t = len2 > 0.0 ? std::clamp((p - x[k]).dot(d) / len2, 0.0, 1.0) : 0.0;
+    const double r = (p - x[k] - t * d).norm();
+    if (r < best.r) best = {r, s[k] + t * std::sqrt(len2), t, k};
+  }
+  Near finish(const Vec<3>& p, const Candidate& c) const {
+    Near best;
+    best.r = c.r, best.s = c.s;
+    if (!(c.r < INFINITY)) return best;
+    const Vec<3> d = x[(c.k + 1) % x.size()] - x[c.k];
+    const double len = d.norm();
+    const Vec<3> foot = x[c.k] + c.t * d;
+    if (best.r > 0.0) best.away = (p - foot) / best.r;
+    const Vec<3> e = (1.0 - c.t) * e1[c.k] + c.t * e1[(c.k + 1) % x.size()];
+    best.e1 = e.normalized();
+    if (c.t > 0.0 && c.t < 1.0 && len > 0.0) {
+      best.grad_s = d / len;
+      const Vec<3> de = (e1[(c.k + 1) % x.size()] - e1[c.k]) / len;  // d e / ds; of the unit vector: its part normal to it
+      best.de1_ds = (de - best.e1 * best.e1.dot(de)) / e.norm();
+    }
+    return best;
+  }
 };
 
 // b(u) = 1 - 10 u^3 + 15 u^4 - 6 u^5 on [0, 1] (1 at 0, 0 at 1, with zero slope and curvature at both),
@@ -162,56 +174,150 @@ inline double smooth_step(double u) {
 }
 inline double smooth_step_slope(double u) { return u <= 0.0 || u >= 1.0 ? 0.0 : -30.0 * u * u * (1.0 - u) * (1.0 - u); }
 
-// The weights of the domain about front node j: the tube of radius R (q = 1 within R_in of the front,
-// falling to 0 at R) and psi along the front (1 at the node, 0 at L from it), both smooth steps b, so
-// that q's gradient is continuous: the particles' midpoint rule then sums it without the error of
-// where a lattice cuts a jump (linear ramps: Williams' field along a grid axis +1.8 % in J, against
-// 0.2 % with nodal q). q and its gradient are taken at the particles in closed form: the gradient of
-// an interpolation of q from the grid's nodes mixes the slope along a front that runs at an angle to
-// the grid into the direction ahead, where the near-tip integrand is singular (the same field along a
-// front turned 30 degrees: J within 4 % node to node).
-struct DomainWeight {
-  const FrontPolyline* line = nullptr;
-  std::size_t j = 0;
-  double R = 0.0, R_in = 0.0, L = 0.0;
-  // q at p (returns false where it and its gradient are zero) and its gradient Q_kj = dq_k / dx_j:
-  // the node's weight along the front plus its mirror images'. Most particles a node's walk meets lie outside its weight: they are told by the nearest point
-  // among the segments within L of the node and of its images along the front. Where that point is
-  // R or more away, or L or more along the front from them all, so is the nearest point of the
-  // whole front, or it lies beyond L of them all: the weight is zero either way. Otherwise the whole
-  // front's nearest point decides.
-  bool q(const Vec<3>& p, Vec<3>& q, Mat<3>& Q) const {
-    const double sj = line->node_s(j);
+// The particles of the tube of radius R about a front's polyline, each with the part of its share of
+// the domain integral that does not depend on the front node. About node j the weight is
+// q = phi(r) psi_j(s) e1(s): phi falls from 1 within R_in of the front to 0 at R, psi_j from 1 at the
+// node to 0 at L along the front from it (and from its mirror images), both smooth steps b, so that
+// q's gradient is continuous: the particles' midpoint rule then sums it without the error of where a
+// lattice cuts a jump (linear ramps: Williams' field along a grid axis +1.8 % in J). q and its gradient
+// are taken at the particles in closed form: the gradient of an interpolation of q from the grid's
+// nodes mixes the slope along a front that runs at an angle to the grid into the direction ahead,
+// where the near-tip integrand is singular (the same field along a front turned 30 degrees: J within
+// 4 % node to node).
+//
+// The gradient is grad q = psi_j A + psi_j' B, with A = phi' e1 (x) away + phi de1/ds (x) grad s and
+// B = phi e1 (x) grad s, and the displacement gradient is the particle's G less the node's rigid
+// rotation theta_j, G - S(theta_j) (S linear: S(w) x = w x x). So the integrand
+// (sigma_ij u_i,k - W delta_kj) q_k,j + rho u''_i u_i,k q_k is, per particle,
+// psi_j (a - theta_j . a_theta) + psi_j' (b - theta_j . b_theta): a particle's nearest point, stress,
+// energy and acceleration are read once per evaluation, not once for each node whose weight reaches it
+// (a node's weight reaches the particles within L along the front, a score of nodes' at the rod's
+// spacing).
+struct TubeParticle {
+  double s = 0.0;  // the arc length of its nearest point on the front
+  double a = 0.0, b = 0.0;
+  Vec<3> a_theta = Vec<3>::Zero(), b_theta = Vec<3>::Zero();
+  double material = 0.0;  // V phi: with psi_j, its share of the tube's volume
+};
+// What the tube reads of a particle: volume, mass, strain energy density W, stress, displacement
+// gradient (with the particle's own rotation, not the node's), acceleration (zero without inertia).
+struct TubeInput {
+  double volume = 0.0, mass = 0.0, W = 0.0;
+  Mat<3> stress = Mat<3>::Zero(), grad_u = Mat<3>::Zero();
+  Vec<3> accel = Vec<3>::Zero();
+};
+
+class FrontTube {
+ public:
+  FrontTube(const FrontPolyline& line, double R, double R_in) : line_(&line), R_(R), R_in_(R_in) {}
+
+  // The particles of bins (positions x) within R of the polyline, in cell and particle order; read(p)
+  // gives particle p's TubeInput. A segment within R of a particle lies within R and the half-diagonal of its
+  // cell's centre, so each cell searches only those segments: the nearest of them is the whole
+  // polyline's wherever that one lies within R.
+  template <class Read>
+  void build(const GridGeometry<3>& G, const CellBins& bins, const std::vector<Vec<3>>& x, Read&& read) {
+    const FrontPolyline& line = *line_;
+    const double h = G.h, reach = R_ + 0.5 * std::sqrt(3.0) * h;
+    std::vector<std::pair<int64_t, uint32_t>> pairs;  // (cell of the bins, segment)
+    for (std::size_t k = 0; k < line.segments(); ++k) {
+      const Vec<3> a = line.x[k], d = line.x[(k + 1) % line.x.size()] - a;
+      const Vec<3> lo = a.cwiseMin(a + d) - Vec<3>::Constant(reach), hi = a.cwiseMax(a + d) + Vec<3>::Constant(reach);
+      const auto c0 = CellBins::cell_of(G, lo), c1 = CellBins::cell_of(G, hi);
+      for (int64_t i = c0[0]; i <= c1[0]; ++i)
+        for (int64_t j = c0[1]; j <= c1[1]; ++j)
+          for (int64_t l = c0[2]; l <= c1[2]; ++l) {
+            const int64_t cell = bins.index(i, j, l);
+            if (cell < 0 || bins.begin[cell] == bins.begin[cell + 1]) continue;
+            const Vec<3> centre = G.origin + h * Vec<3>(i + 0.5, j + 0.5, l + 0.5);
+            const double len2 = d.squaredNorm();
+            const double t = len2 > 0.0 ? std::clamp((centre - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+            if ((centre - a - t * d).norm() <= reach) pairs.push_back({cell, static_cast<uint32_t>(k)});
+          }
+    }
+    std::sort(pairs.begin(), pairs.end());
+    std::vector<std::size_t> cell_begin;  // cell c's pairs: pairs[cell_begin[c] .. cell_begin[c + 1])
+    for (std::size_t q = 0; q < pairs.size(); ++q)
+      if (q == 0 || pairs[q].first != pairs[q - 1].first) cell_begin.push_back(q);
+    cell_begin.push_back(pairs.size());
+    std::vector<uint32_t> segs(pairs.size());
+    for (std::size_t q = 0; q < pairs.size(); ++q) segs[q] = pairs[q].second;
+    const std::size_t cells = cell_begin.size() - 1;
+    std::vector<std::vector<TubeParticle>> of_cell(cells);
+#pragma omp parallel for schedule(dynamic, 4) if (cells > 8)
+    for (std::size_t c = 0; c < cells; ++c) {
+      const int64_t cell = pairs[cell_begin[c]].first;
+      const std::span<const uint32_t> ids(segs.data() + cell_begin[c], segs.data() + cell_begin[c + 1]);
+      for (int64_t q = bins.begin[cell]; q < bins.begin[cell + 1]; ++q) {
+        const int32_t p = bins.particle[q];
+        const auto near = line.nearest_among(x[p], ids);
+        if (!(near.r < R_)) continue;
+        of_cell[c].push_back(share(near, read(p)));
+      }
+    }
+    particles_.clear();
+    for (const auto& v : of_cell) particles_.insert(particles_.end(), v.begin(), v.end());
+  }
+
+  // J1 at front node j (its weight along the front reaching L from it and from its mirror images) with
+  // the node's rigid rotation theta taken out, and the tube's material as a share of full material
+  // (1 in a tube of particles of full volume).
+  struct Reading {
+    double J1 = 0.0, material = 0.0;
+  };
+  Reading read(std::size_t j, double L, const Vec<3>& theta) const {
+    const FrontPolyline& line = *line_;
+    const double sj = line.node_s(j);
     double centres[3] = {sj, 0.0, 0.0};
     int count = 1;
-    for (const double plane : line->planes)  // (an image farther than 2 L weighs nothing on this side)
+    for (const double plane : line.planes)  // (an image farther than 2 L weighs nothing on this side)
       if (std::fabs(plane - sj) < L && count < 3) centres[count++] = 2.0 * plane - sj;
-    const auto weight = [&](double at, double& psi, double& dpsi) {
-      psi = 0.0, dpsi = 0.0;
+    const double lo = *std::min_element(centres, centres + count) - L, hi = *std::max_element(centres, centres + count) + L;
+    double sum = 0.0, material = 0.0;
+    Vec<3> sum_theta = Vec<3>::Zero();
+    for (const TubeParticle& t : particles_) {
+      if (!line.closed && (t.s <= lo || t.s >= hi)) continue;
+      double psi = 0.0, dpsi = 0.0;
       for (int c = 0; c < count; ++c) {
-        const double ds = line->along(centres[c], at), u = std::fabs(ds) / L;
+        const double ds = line.along(centres[c], t.s), u = std::fabs(ds) / L;
         psi += smooth_step(u), dpsi += smooth_step_slope(u) * (ds > 0.0 ? 1.0 : -1.0) / L;
       }
-      return psi != 0.0 || dpsi != 0.0;
-    };
-    const double lo = *std::min_element(centres, centres + count) - L, hi = *std::max_element(centres, centres + count) + L;
-    double psi, dpsi;
-    if (const auto w = line->nearest(p, lo, hi); w.r >= R || !weight(w.s, psi, dpsi)) return false;
-    const auto near = line->nearest(p);
-    if (near.r >= R || !weight(near.s, psi, dpsi)) return false;
-    const double w = R - R_in, u = (near.r - R_in) / w;
+      if (psi == 0.0 && dpsi == 0.0) continue;
+      sum += psi * t.a + dpsi * t.b, sum_theta += psi * t.a_theta + dpsi * t.b_theta;
+      material += psi * t.material;
+    }
+    // The tube's volume weighted by phi psi in full material: (int phi dA) (int psi ds),
+    // int phi dA = pi R_in^2 + pi w R_in + (2/7) pi w^2 (w = R - R_in).
+    const double w = R_ - R_in_, psi_ds = line.psi_integral(sj, L);
+    const double full = M_PI * (R_in_ * R_in_ + w * R_in_ + 2.0 / 7.0 * w * w) * psi_ds;
+    return {(sum - theta.dot(sum_theta)) / psi_ds, full > 0.0 ? material / full : 0.0};
+  }
+  const std::vector<TubeParticle>& particles() const { return particles_; }
+
+ private:
+  TubeParticle share(const FrontPolyline::Near& near, const TubeInput& in) const {
+    const double w = R_ - R_in_, u = (near.r - R_in_) / w;
     const double phi = smooth_step(u), dphi = smooth_step_slope(u) / w;
-    q = phi * psi * near.e1;
-    Q = near.e1 * (dphi * psi * near.away + phi * dpsi * near.grad_s).transpose() +
-        phi * psi * near.de1_ds * near.grad_s.transpose();
-    return true;
+    const Mat<3> A = dphi * near.e1 * near.away.transpose() + phi * near.de1_ds * near.grad_s.transpose();
+    const Mat<3> B = phi * near.e1 * near.grad_s.transpose();
+    const Mat<3> M = in.grad_u.transpose() * in.stress;
+    TubeParticle t;
+    t.s = near.s;
+    t.a = in.volume * (M.cwiseProduct(A).sum() - in.W * A.trace()) + in.mass * phi * (in.grad_u.transpose() * in.accel).dot(near.e1);
+    t.b = in.volume * (M.cwiseProduct(B).sum() - in.W * B.trace());
+    for (int c = 0; c < 3; ++c) {
+      const Mat<3> S = displacement_gradient(Sym<3>::Zero(), Vec<3>::Unit(c));
+      const Mat<3> Sm = S.transpose() * in.stress;
+      t.a_theta[c] = in.volume * Sm.cwiseProduct(A).sum() + in.mass * phi * (S.transpose() * in.accel).dot(near.e1);
+      t.b_theta[c] = in.volume * Sm.cwiseProduct(B).sum();
+    }
+    t.material = in.volume * phi;
+    return t;
   }
-  // The tube's volume weighted by phi psi, what the particles' sum of phi psi V_p reads in full
-  // material: (int phi dA) (int psi ds), int phi dA = pi R_in^2 + pi w R_in + (2/7) pi w^2 (w = R - R_in).
-  double full_volume() const {
-    const double w = R - R_in;
-    return M_PI * (R_in * R_in + w * R_in + 2.0 / 7.0 * w * w) * line->psi_integral(line->node_s(j), L);
-  }
+
+  const FrontPolyline* line_;
+  double R_, R_in_;
+  std::vector<TubeParticle> particles_;
 };
 
 }  // namespace cleave::detail

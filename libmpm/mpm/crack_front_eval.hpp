@@ -106,6 +106,22 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     tri_lo[d] = a, tri_n[d] = std::max<int64_t>(1, b - a + 1);
   }
   const detail::TriangleBins tris(m, tri_lo, tri_n);
+  // The domain integral's tubes, one per polyline: each particle of a tube read once (FrontTube), with
+  // its own rotation in its displacement gradient (each front node takes out its rigid rotation).
+  std::vector<detail::FrontTube> tubes;
+  tubes.reserve(lines.size());
+  for (const auto& line : lines) {
+    tubes.emplace_back(line, ts.radius * h, ts.inner * ts.radius * h);
+    tubes.back().build(G, bins, P.x, [&](int32_t p) {
+      detail::TubeInput in;
+      in.volume = P.volume(p), in.mass = P.mass[p];
+      in.W = m.materials[P.material[p]]->strain_energy_density(P.stress[p], P.strain[p]);
+      in.stress = detail::full_tensor(P.stress[p]);
+      in.grad_u = detail::displacement_gradient(P.strain[p], rotations ? P.rotation3[p] : V::Zero());
+      if (ts.volume_term) in.accel = accel(p);  // (eq. 33's inertia)
+      return in;
+    });
+  }
   std::vector<crack::FrontRecord> out(jobs.size());
   std::vector<uint8_t> done(jobs.size(), 0);
   std::vector<std::string> failure(jobs.size());
@@ -492,32 +508,11 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       if (S.slab_material < 0.9 * area * h) rec.flag |= crack::kFlagContourOutside;
       rec.J1 -= kappa * q1, rec.J2 -= kappa * q2;
     }
-    // J1 by the domain integral (crack_front_domain.hpp) over the particles of the tube, in cell and
-    // particle order.
+    // J1 by the domain integral (crack_front_domain.hpp) from the particles of the front's tube.
     if (domain) {
-      const detail::DomainWeight dw{&lines[line_of[j]], static_cast<std::size_t>(job.node), ts.radius * h,
-                                    ts.inner * ts.radius * h, ts.along * h};
-      double integral = 0.0, material = 0.0;
-      for_cells_near(dw.R + dw.L, INFINITY, [&](int64_t cell, double, double) {
-        for (int64_t k = bins.begin[cell]; k < bins.begin[cell + 1]; ++k) {
-          const int32_t p = bins.particle[k];
-          // (The weight's support lies within R + L of the node: a chord is no longer than its arc, and
-          // a mirror image's part on this side lies nearer the node than the image.)
-          if ((P.x[p] - f.x).squaredNorm() >= (dw.R + dw.L) * (dw.R + dw.L)) continue;
-          V qp;
-          Mat<3> Q;
-          if (!dw.q(P.x[p], qp, Q)) continue;
-          const Mat<3> gu = grad_u(p), sigma = detail::full_tensor(P.stress[p]);
-          const double W = m.materials[P.material[p]]->strain_energy_density(P.stress[p], P.strain[p]);
-          const double vol = P.volume(p);
-          integral += vol * ((gu.transpose() * sigma).cwiseProduct(Q).sum() - W * Q.trace());
-          if (ts.volume_term) integral += P.mass[p] * (gu.transpose() * accel(p)).dot(qp);  // (inertia: eq. 33)
-          material += vol * qp.norm();
-        }
-      });
-      rec.J1 = integral / dw.line->psi_integral(dw.line->node_s(dw.j), dw.L);
-      // The tube should be full of material: a free surface across it leaves part out.
-      if (material < 0.9 * dw.full_volume()) rec.flag |= crack::kFlagContourOutside;
+      const auto r = tubes[line_of[j]].read(static_cast<std::size_t>(job.node), ts.along * h, theta);
+      rec.J1 = r.J1;
+      if (r.material < 0.9) rec.flag |= crack::kFlagContourOutside;  // (a free surface across the tube)
     }
 
     Point a, b;
