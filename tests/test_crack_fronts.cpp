@@ -149,7 +149,7 @@ TEST(FrontCurvature, IsOneOverTheRadiusOfAPennyCracksFrontAndZeroOnAStraightOne)
 // Validation 5: the DCB slab of issue 16 (a through crack in a slab one cell thick between symmetry
 // planes) gives the 2D plane-strain DCB's J at every front node within 1 %: the contour, its
 // extrapolations and the 3D displacement gradients (strain plus the particles' integrated rotation)
-// reduce to the 2D ones.
+// reduce to the 2D ones. And the domain integral with a 4-cell tube gives the 2D contour's J of that radius.
 TEST(CrackFrontJ, ThroughCrackedSlabGivesThePlaneStrainDcbJAtEveryFrontNode) {
   const double end = 0.1;
   json s2 = test::dcb_slab_scene(2, end), s3 = test::dcb_slab_scene(3, end);
@@ -176,6 +176,21 @@ TEST(CrackFrontJ, ThroughCrackedSlabGivesThePlaneStrainDcbJAtEveryFrontNode) {
                 "flag %d\n", r.node, r.x.z() * 1e3, r.J1, J2d, 100 * (r.J1 / J2d - 1), r.J2, r.KI, r.KII, r.KIII, r.flag);
     EXPECT_NEAR(r.J1 / J2d, 1.0, 0.01) << "node " << r.node;
     EXPECT_LT(std::fabs(r.KIII), 0.03 * r.KI) << "node " << r.node;
+  }
+  // The domain integral (crack_tips.integral "domain") on the same state, with a tube of 4 cells (2 cells
+  // read +6.5 % of the 2D contour, 3 cells -3.5 %: docs/validation.md) and its weight along the front
+  // one cell, the slab's thickness (the weight is mirrored once at each plane): the 2D contour of the same
+  // radius within 1 %.
+  crack::TipSettings t2 = *m2.crack_tips, t3 = *m3.crack_tips;
+  t2.radius = 4, t3.radius = 4, t3.along = 1, t3.integral = crack::TipSettings::Integral::Domain;
+  double J2d4 = 0;
+  for (const auto& r : st2->crack_tip_parameters(t2))
+    if (r.end == 1) J2d4 = r.J1;
+  for (const auto& r : st3->crack_front_parameters(t3)) {
+    std::printf("domain, tube 4 cells: front node %d: J1 %.6g J/m^2 (2D contour, 4 cells, %.6g: %+.3f %%), flag %d\n", r.node,
+                r.J1, J2d4, 100 * (r.J1 / J2d4 - 1), r.flag);
+    EXPECT_NEAR(r.J1 / J2d4, 1.0, 0.01) << "node " << r.node;
+    EXPECT_EQ(r.flag, 0) << "node " << r.node;
   }
 }
 
