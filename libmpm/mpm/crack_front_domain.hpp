@@ -289,6 +289,7 @@ class FrontTube {
     // The tube's volume weighted by phi psi in full material: (int phi dA) (int psi ds),
     // int phi dA = pi R_in^2 + pi w R_in + (2/7) pi w^2 (w = R - R_in).
     const double w = R_ - R_in_, psi_ds = line.psi_integral(sj, L);
+    if (!(psi_ds > 0.0)) return {};  // (a front of one node: no length to weigh; flagged as empty)
     const double full = M_PI * (R_in_ * R_in_ + w * R_in_ + 2.0 / 7.0 * w * w) * psi_ds;
     return {(sum - theta.dot(sum_theta)) / psi_ds, full > 0.0 ? material / full : 0.0};
   }
