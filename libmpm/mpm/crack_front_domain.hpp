@@ -10,7 +10,9 @@
 // Why a domain: the plane contour of eqs. 32-33 leaves out what the front's curvature and the fields'
 // change along the front put into the 3D J (the out-of-plane term, taken only to first order in the
 // curvature and for the near-tip fields: docs/validation.md); the domain takes both exactly, for any
-// tube radius, and its integrand is read at the particles, where MPM keeps stress and strain.
+// tube radius in the continuum, and its integrand is read at the particles, where MPM keeps stress and
+// strain. (On a coarse discrete model the radius still matters: a 2-cell tube's weight falls across the
+// tip's own cells; docs/validation.md, "The domain integral".)
 //
 // q = phi(r) psi(s) e1(s), r and s the distance from and the arc length along the front's polyline of
 // a point's nearest point on it, is taken with its gradient in closed form at each particle
