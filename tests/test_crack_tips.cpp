@@ -642,13 +642,12 @@ FreundRun run_freund(double H = 18, double halfwidth = 52, const std::vector<dou
     double tau = st->time() - t0;
     if (centred) {
       const bool ready = !v_older.empty();
-      std::vector<Vec<2>> v_state = state->v;
       if (ready) {
         a_centred.resize(m.particles.size());
         for (std::size_t p = 0; p < a_centred.size(); ++p)
           a_centred[p] = (m.particles.v[p] - v_older[p]) / (st->time() - t_older);
       }
-      v_older = std::move(v_state), t_older = t_state;
+      v_older = state->v, t_older = t_state;
       tau = t_state - t0;
       if (!ready) continue;
     }

@@ -20,6 +20,7 @@
 // front nodes whose weights reach it).
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <span>
 #include <utility>
@@ -121,6 +122,17 @@ struct FrontPolyline {
     for (const uint32_t k : ids) consider(p, k, best);
     return finish(p, best);
   }
+  // Where p's nearest point on segment k lies: t along it (0 at node k, 1 at its end), the distance r,
+  // and the segment's squared length.
+  struct Foot {
+    double t, r, len2;
+  };
+  Foot foot(const Vec<3>& p, std::size_t k) const {
+    const Vec<3> d = x[(k + 1) % x.size()] - x[k];
+    const double len2 = d.squaredNorm();
+    const double t = len2 > 0.0 ? std::clamp((p - x[k]).dot(d) / len2, 0.0, 1.0) : 0.0;
+    return {t, (p - x[k] - t * d).norm(), len2};
+  }
   // Arc length from s0 to s1 (signed; the shorter way round a closed front).
   double along(double s0, double s1) const {
     double d = s1 - s0;
@@ -144,11 +156,8 @@ struct FrontPolyline {
     std::size_t k = 0;
   };
   void consider(const Vec<3>& p, std::size_t k, Candidate& best) const {
-    const Vec<3> d = x[(k + 1) % x.size()] - x[k];
-    const double len2 = d.squaredNorm();
-    const double t = len2 > 0.0 ? std::clamp((p - x[k]).dot(d) / len2, 0.0, 1.0) : 0.0;
-    const double r = (p - x[k] - t * d).norm();
-    if (r < best.r) best = {r, s[k] + t * std::sqrt(len2), t, k};
+    const Foot f = foot(p, k);
+    if (f.r < best.r) best = {f.r, s[k] + f.t * std::sqrt(f.len2), f.t, k};
   }
   Near finish(const Vec<3>& p, const Candidate& c) const {
     Near best;
@@ -223,18 +232,16 @@ class FrontTube {
     const double h = G.h, reach = R_ + 0.5 * std::sqrt(3.0) * h;
     std::vector<std::pair<int64_t, uint32_t>> pairs;  // (cell of the bins, segment)
     for (std::size_t k = 0; k < line.segments(); ++k) {
-      const Vec<3> a = line.x[k], d = line.x[(k + 1) % line.x.size()] - a;
-      const Vec<3> lo = a.cwiseMin(a + d) - Vec<3>::Constant(reach), hi = a.cwiseMax(a + d) + Vec<3>::Constant(reach);
-      const auto c0 = CellBins::cell_of(G, lo), c1 = CellBins::cell_of(G, hi);
+      const Vec<3> &a = line.x[k], &b = line.x[(k + 1) % line.x.size()];
+      const auto c0 = CellBins::cell_of(G, a.cwiseMin(b) - Vec<3>::Constant(reach)),
+                 c1 = CellBins::cell_of(G, a.cwiseMax(b) + Vec<3>::Constant(reach));
       for (int64_t i = c0[0]; i <= c1[0]; ++i)
         for (int64_t j = c0[1]; j <= c1[1]; ++j)
           for (int64_t l = c0[2]; l <= c1[2]; ++l) {
             const int64_t cell = bins.index(i, j, l);
             if (cell < 0 || bins.begin[cell] == bins.begin[cell + 1]) continue;
-            const Vec<3> centre = G.origin + h * Vec<3>(i + 0.5, j + 0.5, l + 0.5);
-            const double len2 = d.squaredNorm();
-            const double t = len2 > 0.0 ? std::clamp((centre - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-            if ((centre - a - t * d).norm() <= reach) pairs.push_back({cell, static_cast<uint32_t>(k)});
+            if (line.foot(G.origin + h * Vec<3>(i + 0.5, j + 0.5, l + 0.5), k).r <= reach)
+              pairs.push_back({cell, static_cast<uint32_t>(k)});
           }
     }
     std::sort(pairs.begin(), pairs.end());
@@ -308,8 +315,12 @@ class FrontTube {
     t.s = near.s;
     t.a = in.volume * (M.cwiseProduct(A).sum() - in.W * A.trace()) + in.mass * phi * (in.grad_u.transpose() * in.accel).dot(near.e1);
     t.b = in.volume * (M.cwiseProduct(B).sum() - in.W * B.trace());
+    // S(e_c), the rotations about the axes (the same for every particle).
+    static const std::array<Mat<3>, 3> kS = {displacement_gradient(Sym<3>::Zero(), Vec<3>::UnitX()),
+                                             displacement_gradient(Sym<3>::Zero(), Vec<3>::UnitY()),
+                                             displacement_gradient(Sym<3>::Zero(), Vec<3>::UnitZ())};
     for (int c = 0; c < 3; ++c) {
-      const Mat<3> S = displacement_gradient(Sym<3>::Zero(), Vec<3>::Unit(c));
+      const Mat<3>& S = kS[c];
       const Mat<3> Sm = S.transpose() * in.stress;
       t.a_theta[c] = in.volume * Sm.cwiseProduct(A).sum() + in.mass * phi * (S.transpose() * in.accel).dot(near.e1);
       t.b_theta[c] = in.volume * Sm.cwiseProduct(B).sum();
