@@ -59,6 +59,17 @@ class Material {
   }
 };
 
+// 2 / (1 + q2), the scale of the Cayley rotation R = I + 2/(1 + |q|^2) (Q + Q^2). A step turns a particle
+// by a small angle (|q| below 1e-4 in every scene we run: 5e-5 for the disk spun at 1 rad/ms on 1 mm
+// cells), where the series 2 (1 - q2 + q2^2) equals it to 1e-24 relative (the next term, q2^3), far below
+// round-off: the division it replaces lay on the stress update's critical path (docs/performance.md,
+// "Issue 14's performance").
+CLEAVE_INLINE inline double cayley_scale(double q2) {
+  if (q2 < 1e-8) [[likely]]
+    return 2.0 * (1.0 + q2 * (q2 - 1.0));
+  return 2.0 / (1.0 + q2);
+}
+
 // Turns two symmetric tensors (a stress and a strain, Sym layout) with the material's spin over dt:
 // t <- R t R^T (and u), R the Cayley (Hughes-Winget) rotation of the spin W = (L - L^T)/2, which is exactly
 // orthogonal (a spinning body keeps its stress's invariants to round-off) and second-order accurate in
@@ -69,15 +80,18 @@ class Material {
 template <int Dim>
 CLEAVE_INLINE inline void rotate_with_spin(Sym<Dim>& t, Sym<Dim>& u, const Mat<Dim>& L, double dt) {
   if constexpr (Dim == 2) {
-    const double q = 0.25 * (L(1, 0) - L(0, 1)) * dt;  // half the angle turned (counter-clockwise)
-    const double d = 1.0 / (1.0 + q * q), c = (1.0 - q * q) * d, s = 2.0 * q * d;
-    const double cc = c * c, ss = s * s, cs = c * s, cs2 = 2.0 * cs, dd = cc - ss;
+    // In 2D a turn by phi leaves the mean (xx + yy)/2 and turns the pair ((xx - yy)/2, xy) by 2 phi.
+    // cos 2 phi = c^2 - s^2 and sin 2 phi = 2 c s, with c = (1 - q^2) k / 2, s = q k, k = cayley_scale.
+    const double q = 0.25 * (L(1, 0) - L(0, 1)) * dt;  // tan(phi / 2), phi the angle turned counter-clockwise
+    const double q2 = q * q, k = cayley_scale(q2), c = 0.5 * (1.0 - q2) * k, s = q * k;
+    const double C = c * c - s * s, S = 2.0 * c * s;
     for (Sym<2>* a : {&t, &u}) {
       Sym<2>& x = *a;
-      const double xx = x[0], yy = x[1], xy = x[3];
-      x[0] = cc * xx + ss * yy - cs2 * xy;
-      x[1] = ss * xx + cc * yy + cs2 * xy;
-      x[3] = cs * (xx - yy) + dd * xy;
+      const double mean = 0.5 * (x[0] + x[1]), dev = 0.5 * (x[0] - x[1]), xy = x[3];
+      const double dev2 = C * dev - S * xy;
+      x[0] = mean + dev2;
+      x[1] = mean - dev2;
+      x[3] = S * dev + C * xy;
     }
   } else {
     // q: half the rotation vector; R = I + 2/(1 + |q|^2) (Q + Q^2), Q v = q x v, and with
@@ -85,7 +99,7 @@ CLEAVE_INLINE inline void rotate_with_spin(Sym<Dim>& t, Sym<Dim>& u, const Mat<D
     // as Eigen expressions R and R T R^T were out-of-line calls, 4 % of a 3D step's time.
     const double qx = 0.25 * dt * (L(2, 1) - L(1, 2)), qy = 0.25 * dt * (L(0, 2) - L(2, 0)),
                  qz = 0.25 * dt * (L(1, 0) - L(0, 1));
-    const double q2 = qx * qx + qy * qy + qz * qz, k = 2.0 / (1.0 + q2), c = 1.0 - k * q2;
+    const double q2 = qx * qx + qy * qy + qz * qz, k = cayley_scale(q2), c = 1.0 - k * q2;
     const double R[3][3] = {{c + k * qx * qx, k * (qx * qy - qz), k * (qx * qz + qy)},
                             {k * (qy * qx + qz), c + k * qy * qy, k * (qy * qz - qx)},
                             {k * (qz * qx - qy), k * (qz * qy + qx), c + k * qz * qz}};

@@ -276,14 +276,13 @@ class MpmStepper final : public Stepper<Dim> {
       St s;
       s.eval(G_, stride_, inv_h_, P_.x[p], P_.half_width[p]);
       if constexpr (update) {
-        Mat<Dim> L = Mat<Dim>::Zero();
-        s.for_each([&](int64_t n, double, const Vec<Dim>& g) { L.noalias() += kin_[n].v * g.transpose(); });
+        const Mat<Dim> L = s.gradient([&](int64_t n) -> const Vec<Dim>& { return kin_[n].v; });
         integrate_spin(P_, p, L, dts);
         update_stress(p, L, dts);
       }
       if constexpr (scatter_force) {
         const Sym<Dim> vs = P_.volume0[p] * P_.stress[p];
-        s.for_each([&](int64_t n, double, const Vec<Dim>& g) { grid_.force[n] -= sym_dot<Dim>(vs, g); });
+        s.for_each_divergence(vs, [&](int64_t n, const Vec<Dim>& f) { grid_.force[n] -= f; });
       }
       if constexpr (move) {
         P_.x[p] += dx_[p];
