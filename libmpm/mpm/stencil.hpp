@@ -128,7 +128,8 @@ struct Stencil {
   // y += a x. For the 3D linear shape (K = 2) component by component: with Eigen's operator+= GCC left
   // the sum out of line in that stress pass (the rod of issue 17), a call per node that cost more than
   // the factoring saves. Elsewhere Eigen's form, which GCC inlines and which measured faster (the 2D
-  // DCB's stress passes 3.8 against 4.0-4.2 Task-1 units, 2D linear 6.2 against 6.6; docs/performance.md).
+  // DCB's stress passes 3.8-3.9 against 4.0-4.2 Task-1 units, 2D linear 5.6-5.7 against 6.55;
+  // docs/performance.md).
   static CLEAVE_INLINE inline void axpy(Vec<Dim>& y, double a, const Vec<Dim>& x) {
     if constexpr (K == 2 && Dim == 3) {
       y[0] += a * x[0], y[1] += a * x[1], y[2] += a * x[2];
