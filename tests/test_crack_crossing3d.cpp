@@ -158,4 +158,57 @@ TEST(TriangleMeshCrossing, NamesTheCrossedTriangleForTheContactNormal) {
             cleave::crack::TriangleHit::Crossed);
 }
 
+// segment_meets_box screens triangles for the MPM's particle-node lines (crack_front_sums.hpp):
+// it may keep a triangle the line misses, never drop one the line meets.
+TEST(SegmentMeetsBox, KeepsTheBoxesASegmentPassesThroughOrTouchesAndDropsThoseItPassesBy) {
+  using cleave::crack::segment_meets_box;
+  const auto inv = [](const V3& p, const V3& q) { return V3((q - p).cwiseInverse()); };
+  const V3 lo(0, 0, 0), hi(1, 1, 0);  // a flat box, as a triangle of a crack on a node plane
+  const double s = cleave::crack::segment_box_slack(1.0, 2.0);
+  EXPECT_TRUE(segment_meets_box(V3(0.5, 0.5, 1), inv(V3(0.5, 0.5, 1), V3(0.5, 0.5, -1)), lo, hi, s));
+  // Ending on the box's plane inside it (a node on the crack), or on its edge.
+  EXPECT_TRUE(segment_meets_box(V3(0.2, 0.3, -0.5), inv(V3(0.2, 0.3, -0.5), V3(0.7, 0.4, 0)), lo, hi, s));
+  EXPECT_TRUE(segment_meets_box(V3(0.2, 0.3, -0.5), inv(V3(0.2, 0.3, -0.5), V3(1.0, 0.4, 0)), lo, hi, s));
+  // Its box meets the segment's box, but the segment crosses the plane beside it.
+  EXPECT_FALSE(segment_meets_box(V3(1.9, 0.5, 1), inv(V3(1.9, 0.5, 1), V3(0.9, 0.5, -1)), lo, hi, s));
+  // Stops short of the plane.
+  EXPECT_FALSE(segment_meets_box(V3(0.5, 0.5, 1), inv(V3(0.5, 0.5, 1), V3(0.5, 0.5, 1e-6)), lo, hi, s));
+  // A point (every component of q - p zero), inside and outside.
+  EXPECT_TRUE(segment_meets_box(V3(0.5, 0.5, 0), inv(V3(0.5, 0.5, 0), V3(0.5, 0.5, 0)), lo, hi, s));
+  EXPECT_FALSE(segment_meets_box(V3(0.5, 1.5, 0), inv(V3(0.5, 1.5, 0), V3(0.5, 1.5, 0)), lo, hi, s));
+}
+
+// The property the screen rests on, over lines of every kind the MPM asks about on a crack laid on
+// node planes and on a tilted one: particles anywhere, nodes on the grid (also on the surface, its
+// edges and vertices), far from the origin as in SI metres of a body placed away from it.
+TEST(SegmentMeetsBox, NeverDropsATriangleThatTheCrossingTestCounts) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int hits = 0;
+  for (const double tilt : {0.0, 0.37}) {
+    for (const double offset : {0.0, 1234.5}) {
+      const double h = 0.25;
+      Mesh m = flat_grid(4);
+      for (auto& p : m.points) p = V3(p.x() * h, p.y() * h, tilt * p.x() * h) + V3::Constant(offset);
+      for (int n = 0; n < 20000; ++n) {
+        const V3 particle = V3::Constant(offset) + V3(u(rng), u(rng), u(rng) - 0.5) * (4 * h);
+        V3 node = particle;
+        for (int d = 0; d < 3; ++d)  // a node of the particle's cell, or of the one beyond
+          node[d] = offset + h * (std::floor((particle[d] - offset) / h) + static_cast<double>(static_cast<int>(rng() % 4) - 1));
+        const V3 inv = (node - particle).cwiseInverse();
+        const double slack = cleave::crack::segment_box_slack(h, std::max(particle.cwiseAbs().maxCoeff(), node.cwiseAbs().maxCoeff()));
+        for (const auto& T : m.triangles) {
+          const V3 &a = m.points[T[0]], &b = m.points[T[1]], &c = m.points[T[2]];
+          int side = 0;
+          if (cleave::crack::triangle_crossing(particle, node, a, b, c, side) == cleave::crack::TriangleHit::None) continue;
+          ++hits;
+          ASSERT_TRUE(cleave::crack::segment_meets_box(particle, inv, a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c), slack))
+              << "tilt " << tilt << " offset " << offset << " line " << particle.transpose() << " -> " << node.transpose();
+        }
+      }
+    }
+  }
+  EXPECT_GT(hits, 10000);
+}
+
 }  // namespace

@@ -257,6 +257,93 @@ TEST(CrackFrontJ, OneAndTwoThreadsGiveTheSameBits) {
   }
 }
 
+// The evaluation's field keys (TriangleBins::key: candidate triangles by cell, per-axis masks, the
+// segment-box screen) against the crossing test on every triangle of the crack, for every line from
+// a particle near the crack to its stencil's nodes: a crack on a node plane (the penny: nodes on the
+// surface, lines through its edges) and an inclined one, linear and uGIMP, after a few steps.
+template <class SF>
+void expect_keys_as_whole_surface(const std::string& scene_file, int steps) {
+  json s = load_scene_file(scene_file);
+  s.erase("output");
+  s["mpm"]["shape_function"] = SF::name;
+  Model<3> m = build_model<3>(s);
+  auto st = make_stepper<3>(m);
+  ASSERT_FALSE(test::advance(*st, steps));
+  const auto& G = m.grid;
+  const auto& P = m.particles;
+  const auto& c = m.cracks.at(0);
+  Vec<3> lo = c.points[0], hi = lo;
+  for (const auto& x : c.points) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+  detail::CellBins box;
+  box.set_box(G, lo - Vec<3>::Constant(3 * G.h), hi + Vec<3>::Constant(3 * G.h));
+  const detail::TriangleBins tris(m, box.lo, box.n);
+  const detail::NodeIndexing ix(G);
+  using St = Stencil<3, SF>;
+  constexpr int K = St::K;
+  detail::TriangleBins::Candidates cand;
+  std::vector<int32_t> all(c.simplices.size());
+  for (std::size_t t = 0; t < all.size(); ++t) all[t] = static_cast<int32_t>(t);
+  long lines = 0, crossing = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    // (A quarter of them, picked by a hash, not a stride that follows the lattice: each line tests
+    // every triangle.)
+    if ((p * 2654435761u >> 7) % 4 != 0) continue;
+    // (Particles whose stencils lie inside the binned box by a cell, where its keys are exact.)
+    const auto cell = detail::CellBins::cell_of(G, P.x[p]);
+    bool inside = true;
+    for (int d = 0; d < 3; ++d) inside = inside && cell[d] >= box.lo[d] + 2 && cell[d] + 2 < box.lo[d] + box.n[d];
+    if (!inside) continue;
+    St sten;
+    sten.eval(G, G.strides(), 1.0 / G.h, P.x[p], P.half_width[p]);
+    const auto b0 = ix.ijk(sten.base);
+    tris.gather_stencil<K>(b0, ix.position(b0), P.x[p], cand);
+    tris.mask_lines<K>(P.x[p], b0, cand);
+    for (int j = 0; j < K * K * K; ++j) {
+      const int a = j / (K * K), b = j / K % K, e = j % K;
+      const Vec<3> xn = ix.position({b0[0] + a, b0[1] + b, b0[2] + e});
+      crack::FieldKeyBuilder expected;
+      const crack::Side side = crack::triangle_list_crossing(c.points.data(), c.simplices.data(), all.data(), all.size(),
+                                                             P.x[p], xn, nullptr,
+                                                             c.front_cut.dropper(c.points.data(), c.simplices.data()));
+      if (side != crack::Side::None) expected.add(c.id, side), ++crossing;
+      ASSERT_EQ(tris.key(P.x[p], xn, cand, a, b, e), expected.key()) << "particle " << p << ", node " << j;
+      ++lines;
+    }
+  }
+  EXPECT_GT(lines, 5000);
+  EXPECT_GT(crossing, 500);
+}
+TEST(TriangleBins, KeysEqualTheCrossingTestOnTheWholeCrackForEveryParticleNodeLineNearIt) {
+  expect_keys_as_whole_surface<LinearShape>(CLEAVE_SOURCE_DIR "/data/scenes/block_penny_crack.json", 5);
+  expect_keys_as_whole_surface<UGimpShape>(CLEAVE_SOURCE_DIR "/data/scenes/block_penny_crack.json", 5);
+  expect_keys_as_whole_surface<LinearShape>(CLEAVE_SOURCE_DIR "/data/scenes/bar_inclined_penny.json", 5);
+}
+
+// The front nodes' lists of grid nodes merged by a bitmap (close indices) or a sort (spread ones).
+TEST(SortedUnion, EqualsSortingAndDeduplicatingTheConcatenationOnBothOfItsPaths) {
+  uint64_t state = 5;
+  const auto next = [&] { return state = state * 6364136223846793005ULL + 1442695040888963407ULL, state >> 33; };
+  for (const int64_t spread : {int64_t{300}, int64_t{1} << 40}) {
+    std::vector<std::vector<int64_t>> lists(7);
+    std::vector<int64_t> all;
+    for (auto& v : lists) {
+      for (int k = 0; k < 40; ++k) v.push_back(1000 + static_cast<int64_t>(next()) % spread);
+      std::sort(v.begin(), v.end());
+      all.insert(all.end(), v.begin(), v.end());
+    }
+    lists[3].clear();  // (an empty list)
+    all.clear();
+    for (const auto& v : lists) all.insert(all.end(), v.begin(), v.end());
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    std::vector<int64_t> out;
+    std::vector<uint64_t> bits;
+    detail::sorted_union(lists, out, bits);
+    EXPECT_EQ(out, all) << "spread " << spread;
+    EXPECT_EQ(bits.empty(), spread > 1000) << "(the path taken)";
+  }
+}
+
 // The stepper keeps the particles near the fronts between evaluations (FrontParticles) while no
 // particle can have moved into the evaluated box from outside its list: the bins are those of a
 // pass over every particle, bit for bit, moved by less or more than the list's two-cell margin.

@@ -24,6 +24,7 @@
 // An even number of crossings is none; an odd number gives the side of the net count.
 // (Exactness assumes that no product of three coordinates under/overflows: SI lengths are far inside.)
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -144,6 +145,29 @@ bool segment_meets_triangle(const Vec<3>& p, const Vec<3>& q, const Vec<3>& a, c
   const int e0 = sign(p, q, a, b), e1 = sign(p, q, b, c), e2 = sign(p, q, c, a);
   return !((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0));
 }
+
+// Whether the closed segment p-q meets the closed box [lo, hi] grown by `slack` on every side (the
+// slab test, with inv = 1 / (q - p) per axis, inf where the segment lies across the axis). A
+// triangle only counts for a line that meets it (triangle_crossing_given: a hit needs the closed
+// segment to meet the closed triangle, hence its box), so callers skip the triangles whose boxes a
+// line misses; for that this must never miss a box the line meets. It does not, while `slack`
+// exceeds the slab parameters' rounding, a few ulps of the coordinates: segment_box_slack.
+inline bool segment_meets_box(const Vec<3>& p, const Vec<3>& inv, const Vec<3>& lo, const Vec<3>& hi, double slack) {
+  double t0 = 0.0, t1 = 1.0;
+  for (int d = 0; d < 3; ++d) {
+    const double a = lo[d] - slack - p[d], b = hi[d] + slack - p[d];
+    if (std::isinf(inv[d])) {  // (along d the segment is a point)
+      if (a > 0.0 || b < 0.0) return false;
+      continue;
+    }
+    const double ta = a * inv[d], tb = b * inv[d];
+    t0 = std::max(t0, std::min(ta, tb)), t1 = std::min(t1, std::max(ta, tb));
+  }
+  return t0 <= t1;
+}
+// The slack for segment_meets_box on lines of a grid of spacing h whose coordinates are at most
+// `extent` in magnitude: a billionth of a cell, and far above the rounding of coordinates that large.
+inline double segment_box_slack(double h, double extent) { return 1e-9 * h + 1e-13 * extent; }
 
 // One triangle (t0, t1, t2) against the particle-node line, as seen by triangle_mesh_crossing.
 enum class TriangleHit : int8_t {

@@ -176,9 +176,30 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     const auto for_cells_near = [&](double d, double plane_max, auto&& g) {
       const int r = static_cast<int>(std::ceil(d * inv_h));
       const auto [ci, cj, ck] = detail::CellBins::cell_of(G, f.x);
+      // Per axis and cell offset: its part of the centre's distance from the plane and of the node's
+      // squared distance from the cell. Their sums screen the cells (most of the cube lies off the
+      // plane or out of reach) with a margin far above their rounding, so that only cells the exact
+      // tests below reject are skipped.
+      constexpr int kMaxR = 16;
+      double along[3][2 * kMaxR + 1], off[3][2 * kMaxR + 1];
+      const bool screen = r <= kMaxR;
+      for (int k = 0; screen && k < 3; ++k)
+        for (int o = -r; o <= r; ++o) {
+          const double lo = G.origin[k] + h * static_cast<double>((k == 0 ? ci : k == 1 ? cj : ck) + o);
+          along[k][o + r] = (lo + 0.5 * h - f.x[k]) * f.e3[k];
+          const double gap = f.x[k] - std::clamp(f.x[k], lo, lo + h);
+          off[k][o + r] = gap * gap;
+        }
+      const double plane_screen = plane_max * (1.0 + 1e-9) + 1e-9 * h, d2_screen = d * d * (1.0 + 1e-9) + 1e-18 * h * h;
       for (int64_t a = ci - r; a <= ci + r; ++a)
         for (int64_t b = cj - r; b <= cj + r; ++b)
           for (int64_t e = ck - r; e <= ck + r; ++e) {
+            if (screen) {
+              const int ia = static_cast<int>(a - ci + r), ib = static_cast<int>(b - cj + r), ie = static_cast<int>(e - ck + r);
+              if (std::fabs(along[0][ia] + along[1][ib] + along[2][ie]) > plane_screen ||
+                  off[0][ia] + off[1][ib] + off[2][ie] > d2_screen)
+                continue;
+            }
             const int64_t cell = bins.index(a, b, e);
             if (cell < 0 || bins.begin[cell] == bins.begin[cell + 1]) continue;
             const V corner = G.origin + h * V(a, b, e);
@@ -296,10 +317,11 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     const bool slab_particles = ts.volume_term || ts.out_of_plane_term;
     const double s3max = mirrors.empty() ? h : 3.0 * h;
     const double bound = std::sqrt(contour_extent * contour_extent + s3max * s3max) + 1e-9 * h;
-    // A cell whose centre lies more than two cells from the contour's plane holds no particle of
-    // the slab (half a cell, plus half a particle and the cell's half-diagonal) unless a mirror
-    // plane is near.
-    const double slab_cells = mirrors.empty() ? 2.0 * h : INFINITY;
+    // A particle of the slab lies within a cell of the contour's plane (half the slab, plus half a
+    // particle), and its cell's centre within half the cell's extent along e3 of it: a cell whose
+    // centre lies farther holds none, unless a mirror plane is near. (That half extent is
+    // h/2 (|e3x| + |e3y| + |e3z|): the cell's half-diagonal only for e3 along a diagonal.)
+    const double slab_cells = mirrors.empty() ? h * (1.0 + 0.5 * f.e3.lpNorm<1>()) + 1e-9 * h : INFINITY;
     double last_volume = -1.0, l = 0.0;  // (cbrt of the last particle's volume: most particles share it)
     const double fit_plane = 2.37 * h;
     const double plane_max = slab_particles ? std::max(fit_plane, slab_cells) : fit_plane;
@@ -326,9 +348,8 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
         st.for_each_weight([&](int64_t n, double) { need.push_back(n); });
       }
     });
-    std::sort(need.begin(), need.end());
-    need.erase(std::unique(need.begin(), need.end()), need.end());
-    need_of[j] = std::move(need);
+    std::vector<uint64_t> bits;
+    detail::sorted_union(std::array<std::span<const int64_t>, 1>{std::span<const int64_t>(need)}, need_of[j], bits);
     continue;
     }
     const State& S = state[j];
