@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
+#include <span>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -20,6 +21,8 @@ namespace cleave {
 class ObjectReader {
  public:
   ObjectReader(const nlohmann::json& j, std::string path, std::initializer_list<const char*> allowed)
+      : ObjectReader(j, std::move(path), std::span<const char* const>(allowed.begin(), allowed.size())) {}
+  ObjectReader(const nlohmann::json& j, std::string path, std::span<const char* const> allowed)
       : j_(j), path_(std::move(path)) {
     if (!j.is_object()) throw SceneError(path_, "expected an object");
     for (auto it = j.begin(); it != j.end(); ++it) {

@@ -107,12 +107,12 @@ void square_frames_on_symmetry_planes(Model<3>& m) {
 }  // namespace
 
 void read_front_tips(const json& scene, const UnitSystem& units, Model<3>& m) {
-  crack::TipSettings s = read_contour_settings(scene, m, units.factor(Quantity::Time),
-                                              {"reference", "out_of_plane_term", "integral", "along", "inner"});
+  static constexpr const char* kFrontKeys[] = {"reference", "out_of_plane_term", "integral", "along", "inner"};
+  crack::TipSettings s = read_contour_settings(scene, m, units.factor(Quantity::Time), kFrontKeys);
   {
-    const ObjectReader r(scene["crack_tips"], "crack_tips",
-                         {"interval", "contour", "radius", "points", "volume_term", "reference", "out_of_plane_term",
-                          "integral", "along", "inner"});
+    std::vector<const char*> keys(std::begin(kContourKeys), std::end(kContourKeys));
+    keys.insert(keys.end(), std::begin(kFrontKeys), std::end(kFrontKeys));
+    const ObjectReader r(scene["crack_tips"], "crack_tips", keys);
     if (r.has("out_of_plane_term")) {
       if (!r["out_of_plane_term"].is_boolean()) throw SceneError(r.at("out_of_plane_term"), "expected true or false");
       s.out_of_plane_term = r["out_of_plane_term"].get<bool>();
@@ -183,11 +183,14 @@ void read_front_tips(const json& scene, const UnitSystem& units, Model<3>& m) {
       }
       const std::string which = "front " + std::to_string(f) + " of crack '" + c.name + "'";
       const std::string of = " of the " + std::to_string(front.nodes.size()) + " nodes of " + which;
+      // (With the domain integral the same circle bounds the tube's cross-section.)
+      const bool domain = s.integral == crack::TipSettings::Integral::Domain;
       if (!outside.empty())
-        m.warnings.push_back("crack_tips: the contours of " + std::to_string(outside.size()) + of + " (nodes " +
-                             list_nodes(outside) + ") leave the material (a free surface or a symmetry plane within " +
-                             format("%g", s.radius) + " cells): their J misses that part of the contour; their "
-                             "crack_fronts.csv rows carry flag 1");
+        m.warnings.push_back(std::string("crack_tips: the ") + (domain ? "integration domains" : "contours") + " of " +
+                             std::to_string(outside.size()) + of + " (nodes " + list_nodes(outside) +
+                             ") leave the material (a free surface or a symmetry plane within " +
+                             format("%g", s.radius) + " cells): their J misses that part of the " +
+                             (domain ? "domain" : "contour") + "; their crack_fronts.csv rows carry flag 1");
       if (!crossing.empty())
         m.warnings.push_back("crack_tips: the contours of " + std::to_string(crossing.size()) + of + " (nodes " +
                              list_nodes(crossing) + ") cross a crack; J there is not path-independent (use a smaller "

@@ -2,6 +2,7 @@
 // build_model (mpm_scene.cpp) after the grid and the particles. Errors name the key path.
 #pragma once
 #include <nlohmann/json.hpp>
+#include <span>
 
 #include <initializer_list>
 
@@ -28,10 +29,11 @@ void read_crack_tips(const nlohmann::json& scene, const UnitSystem& units, Model
 template <int Dim>
 void warn_volume_detection_when_slow(Model<Dim>& m);
 
-// The keys of "crack_tips" common to 2D and 3D (interval, contour, radius, points, volume_term),
-// with more_keys also allowed (read by the caller); checks that the scene has cracks.
+// The keys of "crack_tips" common to 2D and 3D.
+inline constexpr const char* kContourKeys[] = {"interval", "contour", "radius", "points", "volume_term"};
+// Reads kContourKeys, with more_keys also allowed (read by the caller); checks that the scene has cracks.
 template <int Dim>
 crack::TipSettings read_contour_settings(const nlohmann::json& scene, Model<Dim>& m, double time_scale,
-                                         std::initializer_list<const char*> more_keys);
+                                         std::span<const char* const> more_keys);
 
 }  // namespace cleave
