@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
   Model<2> m = build_model<2>(load_scene_file(CLEAVE_SOURCE_DIR "/data/scenes/five_disks.json"));
   auto stepper = make_stepper<2>(m);
   for (int i = 0; i < steps; ++i) stepper->step();
+  stepper->sync_strain();  // (the frame holds the strain as a run writes it)
   const io::PointSet ps = particle_point_set<2>(m, m.output.fields);
   std::printf("five_disks.json after %d steps (t = %.3g s): %zu particles, %zu point arrays, %d threads\n", steps,
               stepper->time(), ps.size(), ps.arrays.size(), omp_get_max_threads());

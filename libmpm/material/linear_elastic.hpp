@@ -1,5 +1,5 @@
 // Isotropic linear elasticity, small strain, integrated incrementally (hypoelastic form
-// dsigma = C : deps, stress and strain first turned with the material's spin: rotate_with_spin), so the
+// dsigma = C : deps, stress and strain first turned with the material's spin: SpinRotation), so the
 // same code serves every stress-update scheme. Declared in a header so
 // that the solver's stress pass can call it without a virtual call when every material is of this
 // kind (the common case, and the one the benchmark measures).
@@ -34,30 +34,30 @@ class LinearElastic final : public Material<Dim> {
 
   // The update on scalars (no temporaries in memory): called directly by the solver's stress pass.
   CLEAVE_INLINE inline void update_inline(Sym<Dim>& s, Sym<Dim>& e, const Mat<Dim>& L, double dt) const {
-    rotate_with_spin<Dim>(s, e, L, dt);
-    const double exx = L(0, 0) * dt, eyy = L(1, 1) * dt, exy = 0.5 * (L(0, 1) + L(1, 0)) * dt;
+    update_impl<true>(s, &e, L, dt);
+  }
+  // The same without the strain, for a solver that takes the strain from the stress (strain_from_stress)
+  // where it is read: the strain's turn and increments were half of what the spin's rotation added to
+  // a 2D step (docs/performance.md, "Issue 14's performance").
+  CLEAVE_INLINE inline void update_stress_inline(Sym<Dim>& s, const Mat<Dim>& L, double dt) const {
+    update_impl<false>(s, nullptr, L, dt);
+  }
+
+  // Stress and strain start at zero and change together (sigma = C : eps, both turned alike, which C,
+  // isotropic, commutes with), so the strain is C^-1 : sigma: plane strain keeps eps_zz = 0, plane
+  // stress has eps_zz = -nu / (1 - nu) (eps_xx + eps_yy), as update_inline carries them.
+  bool strain_from_stress(const Sym<Dim>& s, Sym<Dim>& e) const override {
+    const double two_g = 2.0 * G_;
     if constexpr (Dim == 2) {
-      const double tr = exx + eyy;
-      // Out of plane: plane strain keeps eps_zz = 0 and carries sigma_zz; plane stress the reverse.
-      if (plane_stress_) e[2] -= nu_ / (1.0 - nu_) * tr;
-      else s[2] += lambda_ * tr;
-      s[0] += lambda_ * tr + 2.0 * G_ * exx;
-      s[1] += lambda_ * tr + 2.0 * G_ * eyy;
-      s[3] += 2.0 * G_ * exy;
-      e[0] += exx;
-      e[1] += eyy;
-      e[3] += exy;
+      const double tr = (s[0] + s[1]) / (2.0 * (lambda_ + G_));  // eps_xx + eps_yy
+      e[0] = (s[0] - lambda_ * tr) / two_g, e[1] = (s[1] - lambda_ * tr) / two_g, e[3] = s[3] / two_g;
+      e[2] = plane_stress_ ? -nu_ / (1.0 - nu_) * tr : 0.0;
     } else {
-      const double ezz = L(2, 2) * dt, eyz = 0.5 * (L(1, 2) + L(2, 1)) * dt, exz = 0.5 * (L(0, 2) + L(2, 0)) * dt;
-      const double tr = exx + eyy + ezz;
-      s[0] += lambda_ * tr + 2.0 * G_ * exx;
-      s[1] += lambda_ * tr + 2.0 * G_ * eyy;
-      s[2] += lambda_ * tr + 2.0 * G_ * ezz;
-      s[3] += 2.0 * G_ * exy;
-      s[4] += 2.0 * G_ * eyz;
-      s[5] += 2.0 * G_ * exz;
-      e[0] += exx, e[1] += eyy, e[2] += ezz, e[3] += exy, e[4] += eyz, e[5] += exz;
+      const double tr = (s[0] + s[1] + s[2]) / (3.0 * lambda_ + two_g);
+      for (int i = 0; i < 3; ++i) e[i] = (s[i] - lambda_ * tr) / two_g;
+      for (int i = 3; i < 6; ++i) e[i] = s[i] / two_g;
     }
+    return true;
   }
 
   double strain_energy_density(const Sym<Dim>& s, const Sym<Dim>& e) const override {
@@ -78,6 +78,36 @@ class LinearElastic final : public Material<Dim> {
   }
 
  private:
+  template <bool kStrain>
+  CLEAVE_INLINE inline void update_impl(Sym<Dim>& s, Sym<Dim>* e, const Mat<Dim>& L, double dt) const {
+    const SpinRotation<Dim> R(L, dt);
+    R.apply(s);
+    if constexpr (kStrain) R.apply(*e);
+    const double exx = L(0, 0) * dt, eyy = L(1, 1) * dt, exy = 0.5 * (L(0, 1) + L(1, 0)) * dt;
+    if constexpr (Dim == 2) {
+      const double tr = exx + eyy;
+      // Out of plane: plane strain keeps eps_zz = 0 and carries sigma_zz; plane stress the reverse.
+      if (plane_stress_) {
+        if constexpr (kStrain) (*e)[2] -= nu_ / (1.0 - nu_) * tr;
+      } else {
+        s[2] += lambda_ * tr;
+      }
+      s[0] += lambda_ * tr + 2.0 * G_ * exx;
+      s[1] += lambda_ * tr + 2.0 * G_ * eyy;
+      s[3] += 2.0 * G_ * exy;
+      if constexpr (kStrain) (*e)[0] += exx, (*e)[1] += eyy, (*e)[3] += exy;
+    } else {
+      const double ezz = L(2, 2) * dt, eyz = 0.5 * (L(1, 2) + L(2, 1)) * dt, exz = 0.5 * (L(0, 2) + L(2, 0)) * dt;
+      const double tr = exx + eyy + ezz;
+      s[0] += lambda_ * tr + 2.0 * G_ * exx;
+      s[1] += lambda_ * tr + 2.0 * G_ * eyy;
+      s[2] += lambda_ * tr + 2.0 * G_ * ezz;
+      s[3] += 2.0 * G_ * exy;
+      s[4] += 2.0 * G_ * eyz;
+      s[5] += 2.0 * G_ * exz;
+      if constexpr (kStrain) (*e)[0] += exx, (*e)[1] += eyy, (*e)[2] += ezz, (*e)[3] += exy, (*e)[4] += eyz, (*e)[5] += exz;
+    }
+  }
   Analysis analysis_;
   bool plane_stress_ = false;
   double E_ = 0, nu_ = 0, G_ = 0, lambda_ = 0;

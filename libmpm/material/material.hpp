@@ -21,6 +21,12 @@ class Material {
   virtual ~Material() = default;
   // Advance stress and strain by the velocity gradient L over dt (one of the paper's Subtask 3).
   virtual void update(Sym<Dim>& stress, Sym<Dim>& strain, const Mat<Dim>& L, double dt) const = 0;
+  // The strain that goes with `stress`, for laws where one determines the other (a solver then need
+  // not carry the strain through the steps): true and the strain into `strain`, else false.
+  virtual bool strain_from_stress(const Sym<Dim>& stress, Sym<Dim>& strain) const {
+    (void)stress, (void)strain;
+    return false;
+  }
   // Stored elastic energy per unit volume for the current state.
   virtual double strain_energy_density(const Sym<Dim>& stress, const Sym<Dim>& strain) const = 0;
   // Isotropic elastic constants, for K from J at crack tips: true and the shear modulus and
@@ -70,41 +76,44 @@ CLEAVE_INLINE inline double cayley_scale(double q2) {
   return 2.0 / (1.0 + q2);
 }
 
-// Turns two symmetric tensors (a stress and a strain, Sym layout) with the material's spin over dt:
-// t <- R t R^T (and u), R the Cayley (Hughes-Winget) rotation of the spin W = (L - L^T)/2, which is exactly
-// orthogonal (a spinning body keeps its stress's invariants to round-off) and second-order accurate in
-// the angle. Incremental (hypoelastic) laws call it before adding their increment, so that a body that
-// turns carries its stress with it: without it a stressed body turned by an angle theta keeps its
-// stress components in the fixed axes, an error of order theta times the stress (docs/validation.md,
-// spinning bodies). Objective. One call for both tensors: the rotation's coefficients once.
+// The material's turn over dt, R the Cayley (Hughes-Winget) rotation of the spin W = (L - L^T)/2,
+// which is exactly orthogonal (a spinning body keeps its stress's invariants to round-off) and
+// second-order accurate in the angle; apply(t) turns a symmetric tensor (Sym layout): t <- R t R^T.
+// Incremental (hypoelastic) laws turn their stress (and strain, if they carry one) before adding
+// their increment, so that a body that turns carries its stress with it: without it a stressed body
+// turned by an angle theta keeps its stress components in the fixed axes, an error of order theta
+// times the stress (docs/validation.md, spinning bodies). Objective. The coefficients once per update.
 template <int Dim>
-CLEAVE_INLINE inline void rotate_with_spin(Sym<Dim>& t, Sym<Dim>& u, const Mat<Dim>& L, double dt) {
-  if constexpr (Dim == 2) {
-    // In 2D a turn by phi leaves the mean (xx + yy)/2 and turns the pair ((xx - yy)/2, xy) by 2 phi.
-    // cos 2 phi = c^2 - s^2 and sin 2 phi = 2 c s, with c = (1 - q^2) k / 2, s = q k, k = cayley_scale.
-    const double q = 0.25 * (L(1, 0) - L(0, 1)) * dt;  // tan(phi / 2), phi the angle turned counter-clockwise
-    const double q2 = q * q, k = cayley_scale(q2), c = 0.5 * (1.0 - q2) * k, s = q * k;
-    const double C = c * c - s * s, S = 2.0 * c * s;
-    for (Sym<2>* a : {&t, &u}) {
-      Sym<2>& x = *a;
+struct SpinRotation {
+  CLEAVE_INLINE explicit SpinRotation(const Mat<Dim>& L, double dt) {
+    if constexpr (Dim == 2) {
+      // In 2D a turn by phi leaves the mean (xx + yy)/2 and turns the pair ((xx - yy)/2, xy) by 2 phi.
+      // cos 2 phi = c^2 - s^2 and sin 2 phi = 2 c s, with c = (1 - q^2) k / 2, s = q k, k = cayley_scale.
+      const double q = 0.25 * (L(1, 0) - L(0, 1)) * dt;  // tan(phi / 2), phi the angle turned counter-clockwise
+      const double q2 = q * q, k = cayley_scale(q2), c = 0.5 * (1.0 - q2) * k, s = q * k;
+      C = c * c - s * s, S = 2.0 * c * s;
+    } else {
+      // q: half the rotation vector; R = I + 2/(1 + |q|^2) (Q + Q^2), Q v = q x v, and with
+      // Q^2 = q q^T - |q|^2 I: R = (1 - k |q|^2) I + k Q + k q q^T, k = 2 / (1 + |q|^2). On scalars:
+      // as Eigen expressions R and R T R^T were out-of-line calls, 4 % of a 3D step's time.
+      const double qx = 0.25 * dt * (L(2, 1) - L(1, 2)), qy = 0.25 * dt * (L(0, 2) - L(2, 0)),
+                   qz = 0.25 * dt * (L(1, 0) - L(0, 1));
+      const double q2 = qx * qx + qy * qy + qz * qz, k = cayley_scale(q2), c = 1.0 - k * q2;
+      const double r[3][3] = {{c + k * qx * qx, k * (qx * qy - qz), k * (qx * qz + qy)},
+                              {k * (qy * qx + qz), c + k * qy * qy, k * (qy * qz - qx)},
+                              {k * (qz * qx - qy), k * (qz * qy + qx), c + k * qz * qz}};
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) R[i][j] = r[i][j];
+    }
+  }
+  CLEAVE_INLINE void apply(Sym<Dim>& x) const {
+    if constexpr (Dim == 2) {
       const double mean = 0.5 * (x[0] + x[1]), dev = 0.5 * (x[0] - x[1]), xy = x[3];
       const double dev2 = C * dev - S * xy;
       x[0] = mean + dev2;
       x[1] = mean - dev2;
       x[3] = S * dev + C * xy;
-    }
-  } else {
-    // q: half the rotation vector; R = I + 2/(1 + |q|^2) (Q + Q^2), Q v = q x v, and with
-    // Q^2 = q q^T - |q|^2 I: R = (1 - k |q|^2) I + k Q + k q q^T, k = 2 / (1 + |q|^2). On scalars:
-    // as Eigen expressions R and R T R^T were out-of-line calls, 4 % of a 3D step's time.
-    const double qx = 0.25 * dt * (L(2, 1) - L(1, 2)), qy = 0.25 * dt * (L(0, 2) - L(2, 0)),
-                 qz = 0.25 * dt * (L(1, 0) - L(0, 1));
-    const double q2 = qx * qx + qy * qy + qz * qz, k = cayley_scale(q2), c = 1.0 - k * q2;
-    const double R[3][3] = {{c + k * qx * qx, k * (qx * qy - qz), k * (qx * qz + qy)},
-                            {k * (qy * qx + qz), c + k * qy * qy, k * (qy * qz - qx)},
-                            {k * (qz * qx - qy), k * (qz * qy + qx), c + k * qz * qz}};
-    for (Sym<3>* a : {&t, &u}) {
-      Sym<3>& x = *a;
+    } else {
       const double T[3][3] = {{x[0], x[3], x[5]}, {x[3], x[1], x[4]}, {x[5], x[4], x[2]}};
       double A[3][3];  // R T
       for (int i = 0; i < 3; ++i)
@@ -115,7 +124,9 @@ CLEAVE_INLINE inline void rotate_with_spin(Sym<Dim>& t, Sym<Dim>& u, const Mat<D
       x[3] = 0.5 * (U(0, 1) + U(1, 0)), x[4] = 0.5 * (U(1, 2) + U(2, 1)), x[5] = 0.5 * (U(0, 2) + U(2, 0));
     }
   }
-}
+  double C = 1.0, S = 0.0;  // 2D: cos and sin of twice the angle
+  double R[3][3] = {};      // 3D: the rotation
+};
 
 // Arguments to a material factory: its JSON object, its key path for errors, units and analysis.
 struct MaterialArgs {

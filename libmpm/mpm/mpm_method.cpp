@@ -193,7 +193,10 @@ class MpmMethod final : public Method<Dim> {
     return {"particles", "cracks"};
   }
   io::PointSet frame(std::size_t series) override {
-    if (series == 0) return particle_point_set<Dim>(m_, m_.output.fields);
+    if (series == 0) {
+      stepper_->sync_strain();
+      return particle_point_set<Dim>(m_, m_.output.fields);
+    }
     if constexpr (Dim == 3) {
       if (m_.crack_tips) return io::crack_point_set(m_.cracks, fronts_now());
     } else {
@@ -270,6 +273,7 @@ class MpmMethod final : public Method<Dim> {
   }
 
   void save(StateWriter& w) const override {
+    stepper_->sync_strain();
     w.value(stepper_->time());
     w.value(stepper_->step_count());
     w.value(stepper_->external_work());

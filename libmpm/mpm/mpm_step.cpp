@@ -37,8 +37,18 @@ class MpmStepper final : public Stepper<Dim> {
     for (const auto& mat : m.materials)
       all_linear_elastic_ = all_linear_elastic_ && dynamic_cast<const LinearElastic<Dim>*>(mat.get()) != nullptr;
     if (!m.cracks.empty() || m.body_contact.active()) cf_ = std::make_unique<CrackFields<Dim, SF>>(m, grid_, kin_);
+    // Without crack fields nothing reads a particle's strain during the steps: the stress update
+    // leaves it, and sync_strain / global_state take it from the stress where it is read.
+    derive_strain_ = all_linear_elastic_ && !cf_;
     if (m.spin_transfer) spin_ = std::make_unique<SpinTransfer<Dim>>(m);
     track_travel_ = Dim == 3 && cf_ && m.crack_tips.has_value();
+  }
+
+  void sync_strain() override {
+    if (!derive_strain_) return;
+    const std::size_t n = P_.size();
+#pragma omp parallel for schedule(static) if (worth_parallel(n))
+    for (std::size_t p = 0; p < n; ++p) m_.materials[P_.material[p]]->strain_from_stress(P_.stress[p], P_.strain[p]);
   }
 
   std::string take_warning() override {
@@ -169,7 +179,10 @@ class MpmStepper final : public Stepper<Dim> {
     const std::size_t n = P_.size();
     s.kinetic = deterministic_sum(n, [&](std::size_t p) { return 0.5 * P_.mass[p] * P_.v[p].squaredNorm(); });
     s.strain = deterministic_sum(n, [&](std::size_t p) {
-      return P_.volume0[p] * m_.materials[P_.material[p]]->strain_energy_density(P_.stress[p], P_.strain[p]);
+      const Material<Dim>& mat = *m_.materials[P_.material[p]];
+      Sym<Dim> e;
+      if (derive_strain_) mat.strain_from_stress(P_.stress[p], e);
+      return P_.volume0[p] * mat.strain_energy_density(P_.stress[p], derive_strain_ ? e : P_.strain[p]);
     });
     for (int d = 0; d < Dim; ++d)
       s.momentum[d] = deterministic_sum(n, [&](std::size_t p) { return P_.mass[p] * P_.v[p][d]; });
@@ -250,10 +263,13 @@ class MpmStepper final : public Stepper<Dim> {
   // Subtask 3: the constitutive update, without a virtual call when every material is linear elastic.
   CLEAVE_INLINE void update_stress(std::size_t p, const Mat<Dim>& L, double dts) {
     const Material<Dim>* mat = m_.materials[P_.material[p]].get();
-    if (all_linear_elastic_)  // devirtualised: inlined into the calling loop
-      static_cast<const LinearElastic<Dim>*>(mat)->update_inline(P_.stress[p], P_.strain[p], L, dts);
-    else
+    if (all_linear_elastic_) {  // devirtualised: inlined into the calling loop
+      const auto* le = static_cast<const LinearElastic<Dim>*>(mat);
+      if (derive_strain_) le->update_stress_inline(P_.stress[p], L, dts);
+      else le->update_inline(P_.stress[p], P_.strain[p], L, dts);
+    } else {
       mat->update(P_.stress[p], P_.strain[p], L, dts);
+    }
   }
 
   // Contact at multi-field nodes whenever momenta were (re)computed (Tasks 2 and 6c), and for the
@@ -584,6 +600,7 @@ class MpmStepper final : public Stepper<Dim> {
   long also_left_ = -1;  // a particle that left the grid in a step that also found a non-finite velocity
   int ftz_threads_ = 0;
   bool all_linear_elastic_ = false;
+  bool derive_strain_ = false;  // the strain is taken from the stress, not carried (constructor)
 };
 
 }  // namespace
