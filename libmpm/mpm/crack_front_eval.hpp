@@ -348,8 +348,9 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
         st.for_each_weight([&](int64_t n, double) { need.push_back(n); });
       }
     });
+    const std::span<const int64_t> lists[] = {need};
     std::vector<uint64_t> bits;
-    detail::sorted_union(std::array<std::span<const int64_t>, 1>{std::span<const int64_t>(need)}, need_of[j], bits);
+    detail::sorted_union(lists, need_of[j], bits);
     continue;
     }
     const State& S = state[j];

@@ -110,9 +110,7 @@ void read_front_tips(const json& scene, const UnitSystem& units, Model<3>& m) {
   static constexpr const char* kFrontKeys[] = {"reference", "out_of_plane_term", "integral", "along", "inner"};
   crack::TipSettings s = read_contour_settings(scene, m, units.factor(Quantity::Time), kFrontKeys);
   {
-    std::vector<const char*> keys(std::begin(kContourKeys), std::end(kContourKeys));
-    keys.insert(keys.end(), std::begin(kFrontKeys), std::end(kFrontKeys));
-    const ObjectReader r(scene["crack_tips"], "crack_tips", keys);
+    const ObjectReader r(scene["crack_tips"], "crack_tips", crack_tips_keys(kFrontKeys));
     if (r.has("out_of_plane_term")) {
       if (!r["out_of_plane_term"].is_boolean()) throw SceneError(r.at("out_of_plane_term"), "expected true or false");
       s.out_of_plane_term = r["out_of_plane_term"].get<bool>();

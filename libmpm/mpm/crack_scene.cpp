@@ -485,9 +485,7 @@ void warn_volume_detection_when_slow(Model<Dim>& m) {
 template <int Dim>
 crack::TipSettings read_contour_settings(const json& scene, Model<Dim>& m, double time_scale,
                                          std::span<const char* const> more_keys) {
-  std::vector<const char*> keys(std::begin(kContourKeys), std::end(kContourKeys));
-  keys.insert(keys.end(), more_keys.begin(), more_keys.end());
-  const ObjectReader r(scene["crack_tips"], "crack_tips", keys);
+  const ObjectReader r(scene["crack_tips"], "crack_tips", crack_tips_keys(more_keys));
   if (m.cracks.empty()) throw SceneError("crack_tips", "the scene declares no cracks (key \"cracks\")");
   crack::TipSettings s;
   // crack_tips.interval: the older spelling of output.tip_interval, the key of every method.

@@ -3,8 +3,7 @@
 #pragma once
 #include <nlohmann/json.hpp>
 #include <span>
-
-#include <initializer_list>
+#include <vector>
 
 #include "libmpm/core/units.hpp"
 #include "libmpm/mpm/model.hpp"
@@ -29,9 +28,13 @@ void read_crack_tips(const nlohmann::json& scene, const UnitSystem& units, Model
 template <int Dim>
 void warn_volume_detection_when_slow(Model<Dim>& m);
 
-// The keys of "crack_tips" common to 2D and 3D.
-inline constexpr const char* kContourKeys[] = {"interval", "contour", "radius", "points", "volume_term"};
-// Reads kContourKeys, with more_keys also allowed (read by the caller); checks that the scene has cracks.
+// The keys of "crack_tips": those common to 2D and 3D, then more_keys.
+inline std::vector<const char*> crack_tips_keys(std::span<const char* const> more_keys) {
+  std::vector<const char*> keys = {"interval", "contour", "radius", "points", "volume_term"};
+  keys.insert(keys.end(), more_keys.begin(), more_keys.end());
+  return keys;
+}
+// Reads the common keys, with more_keys also allowed (read by the caller); checks that the scene has cracks.
 template <int Dim>
 crack::TipSettings read_contour_settings(const nlohmann::json& scene, Model<Dim>& m, double time_scale,
                                          std::span<const char* const> more_keys);
