@@ -53,6 +53,7 @@
 #include "libmpm/crack/crack2d.hpp"
 #include "libmpm/mpm/crack_fields/contact.hpp"
 #include "libmpm/mpm/crack_tip_eval.hpp"
+#include "libmpm/mpm/particle_strain.hpp"
 #include "libmpm/mpm/model.hpp"
 #include "libmpm/mpm/stencil.hpp"
 #include "libmpm/mpm/step_timers.hpp"
@@ -74,7 +75,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   using typename Base::NearTest;
   using Base::follow_scene_spin;  // mpm.spin_transfer (crack_fields/crack_motion.hpp)
 
-  CrackFields(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin) : Base(m, grid, kin) {
+  CrackFields(Model<Dim>& m, GridFields<Dim>& grid, std::vector<NodeKinematics<Dim>>& kin) : Base(m, grid, kin), strain_(m) {
     area0_.resize(P_.size());
     for (const auto& b : m.bodies)
       for (std::size_t p = b.first; p < b.first + b.count; ++p)
@@ -190,7 +191,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
     }
     double area = 0.0;
     if constexpr (volume) {
-      const auto& e = P_.strain[p];
+      const Sym<Dim> e = strain_(p);
       area = area0_[p] * (1.0 + e[0]) * (1.0 + e[1]);  // eq. 25
       if constexpr (Dim == 3) area *= 1.0 + e[2];  // (3D: the volume)
     }
@@ -224,7 +225,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
     else extrapolate<true, false>(k, s);
     const std::size_t p = static_cast<std::size_t>(near_[k]);
     const double mp = P_.mass[p];
-    const auto& e = P_.strain[p];
+    const Sym<Dim> e = strain_(p);
     double vol = area0_[p] * (1.0 + e[0]) * (1.0 + e[1]);
     if constexpr (Dim == 3) vol *= 1.0 + e[2];
     for_each_pair(k, s, [&](int64_t n, int32_t x, double w, const V& g) {
@@ -340,6 +341,7 @@ class CrackFields : crack_fields::CrackContact<Dim, SF> {
   using Base::bodies_, Base::body_tag, Base::fvol_, Base::fvol0_, Base::grad_, Base::grad0_;
   using Base::rot_, Base::side_fields_, Base::side_valid_, Base::slot_any_, Base::block_any_, Base::volume_, Base::xkin_;
 
+  StrainOf<Dim> strain_;  // particle strains, carried or taken from the stress
   std::vector<double> area0_;  // per particle: its area (2D) or volume (3D) at zero strain (eq. 25)
   bool need_volume_ = false, need_disp_ = false;  // some crack detects contact by volume / displacement
 };

@@ -33,6 +33,7 @@
 #include "libmpm/mpm/crack_front_sums.hpp"
 #include "libmpm/mpm/crack_tip_eval.hpp"  // kCodCells
 #include "libmpm/mpm/model.hpp"
+#include "libmpm/mpm/particle_strain.hpp"
 #include "libmpm/mpm/stencil.hpp"
 
 namespace cleave {
@@ -48,6 +49,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
   using St = Stencil<3, SF>;
   using Sums = detail::FrontFieldSums;
   const auto& P = m.particles;
+  const StrainOf<3> strain(m);
   const auto& G = m.grid;
   const double h = G.h, inv_h = 1.0 / h;
   const auto stride = G.strides();
@@ -114,10 +116,11 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     tubes.emplace_back(line, ts.radius * h, ts.inner * ts.radius * h);
     tubes.back().build(G, bins, P.x, [&](int32_t p) {
       detail::TubeInput in;
-      in.volume = P.volume(p), in.mass = P.mass[p];
-      in.W = m.materials[P.material[p]]->strain_energy_density(P.stress[p], P.strain[p]);
+      const Sym<3> e = strain(p);
+      in.volume = strained_volume<3>(P.volume0[p], e), in.mass = P.mass[p];
+      in.W = m.materials[P.material[p]]->strain_energy_density(P.stress[p], e);
       in.stress = detail::full_tensor(P.stress[p]);
-      in.grad_u = detail::displacement_gradient(P.strain[p], rotations ? P.rotation3[p] : V::Zero());
+      in.grad_u = detail::displacement_gradient(e, rotations ? P.rotation3[p] : V::Zero());
       if (ts.volume_term) in.accel = accel(p);  // (eq. 33's inertia)
       return in;
     });
@@ -381,7 +384,7 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
     }
     const auto v_rel = [&](int32_t p) { V v = P.v[p] - omega.cross(P.x[p] - f.x); return v; };
     const auto grad_u = [&](int32_t p) {
-      return detail::displacement_gradient(P.strain[p], rotations ? V(P.rotation3[p] - theta) : V(-theta));
+      return detail::displacement_gradient(strain(p), rotations ? V(P.rotation3[p] - theta) : V(-theta));
     };
 
     // Eq. 36 at the needed nodes: per node, its fields' sums (at most a few), from the shared raw

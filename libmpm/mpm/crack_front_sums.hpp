@@ -15,6 +15,7 @@
 #include "libmpm/crack/crossing3d.hpp"
 #include "libmpm/crack/front_parameters.hpp"
 #include "libmpm/mpm/model.hpp"
+#include "libmpm/mpm/particle_strain.hpp"
 #include "libmpm/mpm/stencil.hpp"
 
 namespace cleave {
@@ -476,6 +477,7 @@ class NodeSums {
     if (acc_.size() < nodes_.size()) acc_.resize(nodes_.size());
     if (nodes_.empty()) return;
     const auto& P = m.particles;
+    const StrainOf<3> strain(m);
     const auto& G = m.grid;
     const double h = G.h, inv_h = 1.0 / h;
     const auto stride = G.strides();
@@ -579,9 +581,9 @@ class NodeSums {
                   if (key != crack::kFieldKeyOverflow) {
                     if (!shared) {
                       const double mass = P.mass[p];
-                      share.set(mass, m.materials[P.material[p]]->strain_energy_density(P.stress[p], P.strain[p]),
-                                P.stress[p],
-                                displacement_gradient(P.strain[p], rotations ? P.rotation3[p] : Vec<3>::Zero()),
+                      const Sym<3> e = strain(p);
+                      share.set(mass, m.materials[P.material[p]]->strain_energy_density(P.stress[p], e), P.stress[p],
+                                displacement_gradient(e, rotations ? P.rotation3[p] : Vec<3>::Zero()),
                                 P.u[p], P.v[p], P.x[p], mass * mass / P.volume0[p]);
                       shared = true;
                     }

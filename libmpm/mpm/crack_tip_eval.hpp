@@ -24,6 +24,7 @@
 #include "libmpm/crack/reference_side.hpp"
 #include "libmpm/crack/tip_parameters.hpp"
 #include "libmpm/mpm/model.hpp"
+#include "libmpm/mpm/particle_strain.hpp"
 #include "libmpm/mpm/stencil.hpp"
 
 namespace cleave {
@@ -182,13 +183,14 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
   // Small-strain displacement gradient of particle p relative to the rigid rotation theta of the
   // contour's material (below): its strain plus its integrated rotation less theta.
   double theta = 0.0;
-  const auto grad_u = [&](std::size_t p) {
-    const auto& e = P.strain[p];
+  const StrainOf<2> strain(m);
+  const auto grad_u_of = [&](std::size_t p, const Sym<2>& e) {
     const double r = P.rotation[p] - theta;
     Mat<2> g;
     g << e[0], e[3] - r, e[3] + r, e[1];
     return g;
   };
+  const auto grad_u = [&](std::size_t p) { return grad_u_of(p, strain(p)); };
   std::vector<double> thickness(P.size(), 1.0);  // 2D masses are per body thickness
   for (const auto& b : m.bodies)
     for (std::size_t p = b.first; p < b.first + b.count; ++p) thickness[p] = b.thickness;
@@ -281,11 +283,11 @@ std::vector<crack::TipRecord> evaluate_crack_tips(const Model<2>& m, const crack
         if (d < nearest_d) nearest_d = d, nearest = p;
         if (ts.volume_term && crack::inside_contour(f, ts, h, P.x[p])) inside.push_back(p), inside_x.push_back(sort_x[k]);
         const auto& s = P.stress[p];
-        const auto& e = P.strain[p];
+        const Sym<2> e = strain(p);
         const Material<2>& mat = *m.materials[P.material[p]];
         const double mp = P.mass[p];
         const double energy = mat.strain_energy_density(s, e);
-        const Mat<2> gu = grad_u(p);
+        const Mat<2> gu = grad_u_of(p, e);
         const V vp = v_rel(p);
         St st;
         st.eval(G, stride, inv_h, P.x[p], P.half_width[p]);

@@ -12,6 +12,7 @@
 #include "libmpm/method/describe.hpp"
 #include "libmpm/mpm/crack_fields.hpp"
 #include "libmpm/mpm/crack_front_eval.hpp"
+#include "libmpm/mpm/particle_strain.hpp"
 #include "libmpm/mpm/spin_transfer.hpp"
 #include "libmpm/core/parallel.hpp"
 #include "libmpm/mpm/strip_order.hpp"
@@ -37,9 +38,10 @@ class MpmStepper final : public Stepper<Dim> {
     for (const auto& mat : m.materials)
       all_linear_elastic_ = all_linear_elastic_ && dynamic_cast<const LinearElastic<Dim>*>(mat.get()) != nullptr;
     if (!m.cracks.empty() || m.body_contact.active()) cf_ = std::make_unique<CrackFields<Dim, SF>>(m, grid_, kin_);
-    // Without crack fields nothing reads a particle's strain during the steps: the stress update
-    // leaves it, and sync_strain / global_state take it from the stress where it is read.
-    derive_strain_ = all_linear_elastic_ && !cf_;
+    // Linear elasticity's strain is C^-1 : sigma: the stress update leaves it, and sync_strain (frames,
+    // checkpoints) and StrainOf (readers between steps) take it from the stress (particle_strain.hpp).
+    derive_strain_ = all_linear_elastic_;
+    P_.strain_derived = derive_strain_;
     if (m.spin_transfer) spin_ = std::make_unique<SpinTransfer<Dim>>(m);
     track_travel_ = Dim == 3 && cf_ && m.crack_tips.has_value();
   }
@@ -178,11 +180,9 @@ class MpmStepper final : public Stepper<Dim> {
     s.external_work = external_work_;
     const std::size_t n = P_.size();
     s.kinetic = deterministic_sum(n, [&](std::size_t p) { return 0.5 * P_.mass[p] * P_.v[p].squaredNorm(); });
+    const StrainOf<Dim> strain(m_);
     s.strain = deterministic_sum(n, [&](std::size_t p) {
-      const Material<Dim>& mat = *m_.materials[P_.material[p]];
-      Sym<Dim> e;
-      if (derive_strain_) mat.strain_from_stress(P_.stress[p], e);
-      return P_.volume0[p] * mat.strain_energy_density(P_.stress[p], derive_strain_ ? e : P_.strain[p]);
+      return P_.volume0[p] * m_.materials[P_.material[p]]->strain_energy_density(P_.stress[p], strain(p));
     });
     for (int d = 0; d < Dim; ++d)
       s.momentum[d] = deterministic_sum(n, [&](std::size_t p) { return P_.mass[p] * P_.v[p][d]; });

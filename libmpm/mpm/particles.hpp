@@ -14,7 +14,7 @@ struct Particles {
   std::vector<Vec<Dim>> v;       // velocity
   std::vector<Vec<Dim>> u;       // displacement from the initial position
   std::vector<Sym<Dim>> stress;  // Cauchy stress
-  std::vector<Sym<Dim>> strain;  // small-strain tensor
+  std::vector<Sym<Dim>> strain;  // small-strain tensor (see strain_derived)
   std::vector<double> mass;
   std::vector<double> volume0;     // initial volume (2D: area times thickness)
   std::vector<double> half_width;  // half the particle's domain, in cells (uGIMP)
@@ -24,6 +24,10 @@ struct Particles {
   // rotation, the strain alone is symmetric): the rotation vector (W_21, W_02, W_10) integrated from
   // the spin. Empty otherwise, so that other 3D runs neither store nor update it.
   std::vector<Vec<3>> rotation3;
+  // Set by a stepper that advances only the stress (every material linear elastic): `strain` is then
+  // current only after Stepper::sync_strain(), and readers between steps use StrainOf
+  // (particle_strain.hpp), which takes it from the stress.
+  bool strain_derived = false;
 
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n) {
@@ -38,12 +42,21 @@ struct Particles {
     material.resize(n);
     if constexpr (Dim == 2) rotation.resize(n);
   }
-  // Current volume from the normal strains, as the seed's eq. 25 (times the out-of-plane stretch).
-  double volume(std::size_t p) const {
-    const auto& e = strain[p];
-    return volume0[p] * (1.0 + e[0]) * (1.0 + e[1]) * (1.0 + e[2]);
-  }
+  // Current volume from the normal strains, as the seed's eq. 25 (times the out-of-plane stretch); while
+  // strain_derived, StrainOf::volume.
+  double volume(std::size_t p) const;
 };
+
+// The volume of a particle of initial volume v0 at strain e (seed 002's eq. 25, times the out-of-plane
+// stretch).
+template <int Dim>
+inline double strained_volume(double v0, const Sym<Dim>& e) {
+  return v0 * (1.0 + e[0]) * (1.0 + e[1]) * (1.0 + e[2]);
+}
+template <int Dim>
+inline double Particles<Dim>::volume(std::size_t p) const {
+  return strained_volume<Dim>(volume0[p], strain[p]);
+}
 
 // The rotation of particle p advanced by the spin of its velocity gradient L over dts (2D: in-plane,
 // for the renderer and for displacement contact detection; 3D: only where rotation3 is kept).

@@ -1,0 +1,33 @@
+// A particle's strain where the stepper does not carry it. For linear elasticity the strain is
+// C^-1 : sigma exactly (LinearElastic::strain_from_stress), so when every material is linear elastic
+// the stepper (mpm_step.cpp) advances only the stress: the strain's turn and increments were most of
+// what the objective update added to a step (docs/performance.md, issue 14). Particles::strain is then
+// current only after Stepper::sync_strain(); whatever reads it between steps (crack contact's particle
+// volumes, the J evaluators) takes it through StrainOf.
+#pragma once
+#include <cstddef>
+
+#include "libmpm/mpm/model.hpp"
+
+namespace cleave {
+
+template <int Dim>
+class StrainOf {
+ public:
+  explicit StrainOf(const Model<Dim>& m) : P_(m.particles), materials_(m.materials) {}
+
+  Sym<Dim> operator()(std::size_t p) const {
+    if (!P_.strain_derived) return P_.strain[p];
+    Sym<Dim> e;
+    materials_[P_.material[p]]->strain_from_stress(P_.stress[p], e);
+    return e;
+  }
+  // The volume from the normal strains (Particles::volume, seed 002's eq. 25).
+  double volume(std::size_t p) const { return strained_volume<Dim>(P_.volume0[p], (*this)(p)); }
+
+ private:
+  const Particles<Dim>& P_;
+  const std::vector<std::unique_ptr<Material<Dim>>>& materials_;
+};
+
+}  // namespace cleave
