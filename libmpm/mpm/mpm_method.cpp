@@ -193,10 +193,7 @@ class MpmMethod final : public Method<Dim> {
     return {"particles", "cracks"};
   }
   io::PointSet frame(std::size_t series) override {
-    if (series == 0) {
-      stepper_->sync_strain();
-      return particle_point_set<Dim>(m_, m_.output.fields);
-    }
+    if (series == 0) return particle_point_set<Dim>(m_, m_.output.fields);
     if constexpr (Dim == 3) {
       if (m_.crack_tips) return io::crack_point_set(m_.cracks, fronts_now());
     } else {
