@@ -47,17 +47,20 @@ class LinearElastic final : public Material<Dim> {
   // isotropic, commutes with), so the strain is C^-1 : sigma: plane strain keeps eps_zz = 0, plane
   // stress has eps_zz = -nu / (1 - nu) (eps_xx + eps_yy), as update_inline carries them.
   bool strain_from_stress(const Sym<Dim>& s, Sym<Dim>& e) const override {
-    const double two_g = 2.0 * G_;
+    strain_from_stress_inline(s, e);
+    return true;
+  }
+  CLEAVE_INLINE void strain_from_stress_inline(const Sym<Dim>& s, Sym<Dim>& e) const {
+    const double inv_2g = 0.5 / G_;
     if constexpr (Dim == 2) {
       const double tr = (s[0] + s[1]) / (2.0 * (lambda_ + G_));  // eps_xx + eps_yy
-      e[0] = (s[0] - lambda_ * tr) / two_g, e[1] = (s[1] - lambda_ * tr) / two_g, e[3] = s[3] / two_g;
+      e[0] = (s[0] - lambda_ * tr) * inv_2g, e[1] = (s[1] - lambda_ * tr) * inv_2g, e[3] = s[3] * inv_2g;
       e[2] = plane_stress_ ? -nu_ / (1.0 - nu_) * tr : 0.0;
     } else {
-      const double tr = (s[0] + s[1] + s[2]) / (3.0 * lambda_ + two_g);
-      for (int i = 0; i < 3; ++i) e[i] = (s[i] - lambda_ * tr) / two_g;
-      for (int i = 3; i < 6; ++i) e[i] = s[i] / two_g;
+      const double tr = (s[0] + s[1] + s[2]) / (3.0 * lambda_ + 2.0 * G_);
+      for (int i = 0; i < 3; ++i) e[i] = (s[i] - lambda_ * tr) * inv_2g;
+      for (int i = 3; i < 6; ++i) e[i] = s[i] * inv_2g;
     }
-    return true;
   }
 
   double strain_energy_density(const Sym<Dim>& s, const Sym<Dim>& e) const override {

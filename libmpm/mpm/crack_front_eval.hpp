@@ -524,8 +524,8 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       double q1 = 0.0, q2 = 0.0;
       for (const auto& [p, weight] : inside) {
         const V t1 = detail::full_tensor(P.stress[p]) * f.e1;
-        const Mat<3> gu = grad_u(p);
-        q1 += P.volume0[p] * weight * t1.dot(gu * f.e1), q2 += P.volume0[p] * weight * t1.dot(gu * f.e2);
+        const V gt = grad_u(p).transpose() * t1;  // t1 . (grad u e_k) = (grad u^T t1) . e_k
+        q1 += P.volume0[p] * weight * gt.dot(f.e1), q2 += P.volume0[p] * weight * gt.dot(f.e2);
       }
       // The slab should be full of material (the contour's area times one cell): a free surface
       // across it leaves part of the area out.

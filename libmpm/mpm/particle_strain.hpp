@@ -2,11 +2,12 @@
 // C^-1 : sigma exactly (LinearElastic::strain_from_stress), so when every material is linear elastic
 // the stepper (mpm_step.cpp) advances only the stress: the strain's turn and increments were most of
 // what the objective update added to a step (docs/performance.md, issue 14). Particles::strain is then
-// current only after Stepper::sync_strain(); whatever reads it between steps (crack contact's particle
-// volumes, the J evaluators) takes it through StrainOf.
+// current only after Stepper::sync_strain(); whatever reads it between steps (frames, crack contact's
+// particle volumes, the J evaluators) takes it through StrainOf.
 #pragma once
 #include <cstddef>
 
+#include "libmpm/material/linear_elastic.hpp"
 #include "libmpm/mpm/model.hpp"
 
 namespace cleave {
@@ -14,12 +15,17 @@ namespace cleave {
 template <int Dim>
 class StrainOf {
  public:
-  explicit StrainOf(const Model<Dim>& m) : P_(m.particles), materials_(m.materials) {}
+  explicit StrainOf(const Model<Dim>& m) : P_(m.particles), materials_(m.materials) {
+    for (const auto& mat : materials_) all_linear_elastic_ = all_linear_elastic_ && dynamic_cast<const LinearElastic<Dim>*>(mat.get());
+  }
 
-  Sym<Dim> operator()(std::size_t p) const {
+  CLEAVE_INLINE Sym<Dim> operator()(std::size_t p) const {
     if (!P_.strain_derived) return P_.strain[p];
     Sym<Dim> e;
-    materials_[P_.material[p]]->strain_from_stress(P_.stress[p], e);
+    const Material<Dim>* mat = materials_[P_.material[p]].get();
+    // (Without a virtual call where every material is linear elastic: the J evaluators read it per particle.)
+    if (all_linear_elastic_) static_cast<const LinearElastic<Dim>*>(mat)->strain_from_stress_inline(P_.stress[p], e);
+    else mat->strain_from_stress(P_.stress[p], e);
     return e;
   }
   // The volume from the normal strains (Particles::volume, seed 002's eq. 25).
@@ -28,6 +34,7 @@ class StrainOf {
  private:
   const Particles<Dim>& P_;
   const std::vector<std::unique_ptr<Material<Dim>>>& materials_;
+  bool all_linear_elastic_ = true;
 };
 
 }  // namespace cleave
