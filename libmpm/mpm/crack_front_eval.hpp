@@ -523,9 +523,14 @@ std::vector<crack::FrontRecord> evaluate_crack_fronts(const Model<3>& m, const c
       const double kappa = front_curvature(c.fronts[job.front], c.points, job.node);
       double q1 = 0.0, q2 = 0.0;
       for (const auto& [p, weight] : inside) {
-        const V t1 = detail::full_tensor(P.stress[p]) * f.e1;
-        const V gt = grad_u(p).transpose() * t1;  // t1 . (grad u e_k) = (grad u^T t1) . e_k
-        q1 += P.volume0[p] * weight * gt.dot(f.e1), q2 += P.volume0[p] * weight * gt.dot(f.e2);
+        // t1 . (grad u e_k) = (grad u^T t1) . e_k, on scalars (as Eigen products GCC left these out of
+        // line here, a call per particle and node: 4 % of an evaluation).
+        const V t1 = sym_dot<3>(P.stress[p], f.e1);
+        const Mat<3> gu = grad_u(p);
+        double g1 = 0.0, g2 = 0.0;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) g1 += t1[i] * gu(i, j) * f.e1[j], g2 += t1[i] * gu(i, j) * f.e2[j];
+        q1 += P.volume0[p] * weight * g1, q2 += P.volume0[p] * weight * g2;
       }
       // The slab should be full of material (the contour's area times one cell): a free surface
       // across it leaves part of the area out.
