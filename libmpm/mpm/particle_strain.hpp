@@ -6,6 +6,7 @@
 // particle volumes, the J evaluators) takes it through StrainOf.
 #pragma once
 #include <cstddef>
+#include <stdexcept>
 
 #include "libmpm/material/linear_elastic.hpp"
 #include "libmpm/mpm/model.hpp"
@@ -16,16 +17,19 @@ template <int Dim>
 class StrainOf {
  public:
   explicit StrainOf(const Model<Dim>& m) : P_(m.particles), materials_(m.materials) {
-    for (const auto& mat : materials_) all_linear_elastic_ = all_linear_elastic_ && dynamic_cast<const LinearElastic<Dim>*>(mat.get());
+    if (P_.strain_derived)
+      for (const auto& mat : materials_)
+        if (!dynamic_cast<const LinearElastic<Dim>*>(mat.get()))
+          throw std::logic_error("StrainOf: the strain is taken from the stress, but material '" + mat->name() +
+                                 "' is not linear elastic");
   }
 
+  // (While strain_derived every material is linear elastic, checked above: no virtual call, for the J
+  // evaluators read it per particle.)
   CLEAVE_INLINE Sym<Dim> operator()(std::size_t p) const {
     if (!P_.strain_derived) return P_.strain[p];
     Sym<Dim> e;
-    const Material<Dim>* mat = materials_[P_.material[p]].get();
-    // (Without a virtual call where every material is linear elastic: the J evaluators read it per particle.)
-    if (all_linear_elastic_) static_cast<const LinearElastic<Dim>*>(mat)->strain_from_stress_inline(P_.stress[p], e);
-    else mat->strain_from_stress(P_.stress[p], e);
+    static_cast<const LinearElastic<Dim>*>(materials_[P_.material[p]].get())->strain_from_stress_inline(P_.stress[p], e);
     return e;
   }
   // The volume from the normal strains (Particles::volume, seed 002's eq. 25).
@@ -34,7 +38,6 @@ class StrainOf {
  private:
   const Particles<Dim>& P_;
   const std::vector<std::unique_ptr<Material<Dim>>>& materials_;
-  bool all_linear_elastic_ = true;
 };
 
 }  // namespace cleave
