@@ -79,7 +79,7 @@ TEST(FrontDomain, ATubeReadsEachParticleOnceAndGivesTheSumOfTheWeightsTakenParti
   const auto made_up = [&](std::size_t p) {
     const Vec<3> x = P.x[p] * 50.0;
     detail::TubeInput in;
-    in.volume = P.volume(p), in.mass = P.mass[p], in.W = 1.0 + x.squaredNorm();
+    in.volume = strained_volume<3>(P.volume0[p], P.strain[p]), in.mass = P.mass[p], in.W = 1.0 + x.squaredNorm();
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
         in.stress(i, j) = std::sin(x[i] + 2.0 * x[j] + x[i] * x[j]);

@@ -32,7 +32,7 @@ class StrainOf {
     static_cast<const LinearElastic<Dim>*>(materials_[P_.material[p]].get())->strain_from_stress_inline(P_.stress[p], e);
     return e;
   }
-  // The volume from the normal strains (Particles::volume, seed 002's eq. 25).
+  // The volume from the normal strains (seed 002's eq. 25, strained_volume).
   double volume(std::size_t p) const { return strained_volume<Dim>(P_.volume0[p], (*this)(p)); }
 
  private:

@@ -42,9 +42,6 @@ struct Particles {
     material.resize(n);
     if constexpr (Dim == 2) rotation.resize(n);
   }
-  // Current volume from the normal strains, as the seed's eq. 25 (times the out-of-plane stretch); while
-  // strain_derived, StrainOf::volume.
-  double volume(std::size_t p) const;
 };
 
 // The volume of a particle of initial volume v0 at strain e (seed 002's eq. 25, times the out-of-plane
@@ -52,10 +49,6 @@ struct Particles {
 template <int Dim>
 inline double strained_volume(double v0, const Sym<Dim>& e) {
   return v0 * (1.0 + e[0]) * (1.0 + e[1]) * (1.0 + e[2]);
-}
-template <int Dim>
-inline double Particles<Dim>::volume(std::size_t p) const {
-  return strained_volume<Dim>(volume0[p], strain[p]);
 }
 
 // The rotation of particle p advanced by the spin of its velocity gradient L over dts (2D: in-plane,
