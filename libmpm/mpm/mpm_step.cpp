@@ -38,19 +38,19 @@ class MpmStepper final : public Stepper<Dim> {
     for (const auto& mat : m.materials)
       all_linear_elastic_ = all_linear_elastic_ && dynamic_cast<const LinearElastic<Dim>*>(mat.get()) != nullptr;
     if (!m.cracks.empty() || m.body_contact.active()) cf_ = std::make_unique<CrackFields<Dim, SF>>(m, grid_, kin_);
-    // Linear elasticity's strain is C^-1 : sigma: the stress update leaves it, and sync_strain (frames,
-    // checkpoints) and StrainOf (readers between steps) take it from the stress (particle_strain.hpp).
-    derive_strain_ = all_linear_elastic_;
-    P_.strain_derived = derive_strain_;
+    // Linear elasticity's strain is C^-1 : sigma: the stress update leaves it, and whatever reads it
+    // takes it from the stress (StrainOf, particle_strain.hpp; sync_strain before a checkpoint).
+    P_.strain_derived = all_linear_elastic_;
     if (m.spin_transfer) spin_ = std::make_unique<SpinTransfer<Dim>>(m);
     track_travel_ = Dim == 3 && cf_ && m.crack_tips.has_value();
   }
 
   void sync_strain() override {
-    if (!derive_strain_) return;
+    if (!P_.strain_derived) return;
+    const StrainOf<Dim> strain(m_);
     const std::size_t n = P_.size();
 #pragma omp parallel for schedule(static) if (worth_parallel(n))
-    for (std::size_t p = 0; p < n; ++p) m_.materials[P_.material[p]]->strain_from_stress(P_.stress[p], P_.strain[p]);
+    for (std::size_t p = 0; p < n; ++p) P_.strain[p] = strain(p);
   }
 
   std::string take_warning() override {
@@ -260,16 +260,14 @@ class MpmStepper final : public Stepper<Dim> {
     }
   }
 
-  // Subtask 3: the constitutive update, without a virtual call when every material is linear elastic.
+  // Subtask 3: the constitutive update, without a virtual call when every material is linear elastic
+  // (and then of the stress alone: the strain is taken from it, P_.strain_derived).
   CLEAVE_INLINE void update_stress(std::size_t p, const Mat<Dim>& L, double dts) {
     const Material<Dim>* mat = m_.materials[P_.material[p]].get();
-    if (all_linear_elastic_) {  // devirtualised: inlined into the calling loop
-      const auto* le = static_cast<const LinearElastic<Dim>*>(mat);
-      if (derive_strain_) le->update_stress_inline(P_.stress[p], L, dts);
-      else le->update_inline(P_.stress[p], P_.strain[p], L, dts);
-    } else {
+    if (all_linear_elastic_)  // devirtualised: inlined into the calling loop
+      static_cast<const LinearElastic<Dim>*>(mat)->update_stress_inline(P_.stress[p], L, dts);
+    else
       mat->update(P_.stress[p], P_.strain[p], L, dts);
-    }
   }
 
   // Contact at multi-field nodes whenever momenta were (re)computed (Tasks 2 and 6c), and for the
@@ -600,7 +598,6 @@ class MpmStepper final : public Stepper<Dim> {
   long also_left_ = -1;  // a particle that left the grid in a step that also found a non-finite velocity
   int ftz_threads_ = 0;
   bool all_linear_elastic_ = false;
-  bool derive_strain_ = false;  // the strain is taken from the stress, not carried (constructor)
 };
 
 }  // namespace

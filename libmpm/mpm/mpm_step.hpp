@@ -41,9 +41,9 @@ class Stepper {
   virtual std::vector<crack::TipRecord> crack_tip_parameters(const crack::TipSettings&) { return {}; }
   // J and K_I, K_II, K_III at every node of the fronts of a 3D cracked model (empty otherwise).
   virtual std::vector<crack::FrontRecord> crack_front_parameters(const crack::TipSettings&) { return {}; }
-  // Brings every particle's strain up to date where the stepper takes it from the stress rather than
-  // carrying it (linear elastic bodies without crack fields): call before the particles are read
-  // outside the step (frames, checkpoints).
+  // Brings every particle's stored strain up to date where the stepper takes it from the stress rather
+  // than carrying it (Particles::strain_derived): before the array itself is written (checkpoints).
+  // Readers of single particles use StrainOf (particle_strain.hpp) instead.
   virtual void sync_strain() {}
   // Restores counters when resuming from a checkpoint.
   virtual void restore(double time, long step, double external_work) = 0;
